@@ -1,0 +1,47 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+/* Seeded synthetic clouds with known surfaces, shared by the demo, the benchmarks
+ * and the tests (the project ships no third-party data of its own). */
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace pcl_graph_denoise {
+namespace synthetic {
+
+using Cloud = pcl::PointCloud<pcl::PointXYZ>;
+
+/** n points uniform on a sphere of the given radius at the origin, plus isotropic
+ *  Gaussian noise of standard deviation `noise`. */
+Cloud
+noisySphere (std::size_t n, double radius, double noise, std::uint64_t seed);
+
+/** n points uniform on the unit square [-1,1]^2 x {0}, plus Gaussian noise. */
+Cloud
+noisyPlane (std::size_t n, double noise, std::uint64_t seed);
+
+/** n points uniform on the surface of the cube [-1,1]^3, plus Gaussian noise. */
+Cloud
+noisyCube (std::size_t n, double noise, std::uint64_t seed);
+
+/** Appends round(fraction x size) points uniform in the cloud's bounding box enlarged
+ *  by `margin` (relative to its extent) and returns, for every point of the result,
+ *  whether it is one of the added outliers. */
+std::vector<bool>
+addUniformOutliers (Cloud &cloud, double fraction, double margin, std::uint64_t seed);
+
+/** The demo's default input: a table top with a box and a ball on it, seen as a
+ *  noisy scan (about 60,000 points, metres, noise 3 mm) with 4% outliers.
+ *  `is_outlier` receives the ground truth when not null. */
+Cloud
+demoScene (std::uint64_t seed, std::vector<bool> *is_outlier = nullptr);
+
+} // namespace synthetic
+} // namespace pcl_graph_denoise

@@ -1,0 +1,146 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+/** \file graph.h
+ *  \brief The point graph: a symmetric, weighted neighbourhood graph stored as
+ *  CSR in a spatially coherent internal order, and how to build it.
+ *
+ *  This header is part of the PCL-independent numerical core: it sees points
+ *  only as an N x 3 float matrix. Everything here throws std::invalid_argument
+ *  on invalid parameters; the PCL adaptors turn that into PCL_ERROR.
+ */
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace pcl_graph_denoise {
+namespace core {
+
+/** \brief Vertex index type of the graph (32 bits: at most 2^32 - 1 points). */
+using VertexIndex = std::uint32_t;
+
+/** \brief Positions of N points, one per row, in the caller's units. */
+using PointMatrix = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+/** \brief A signal of three values per vertex (e.g. x, y, z), one row per vertex. */
+using Signal3 = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+/** \brief Symmetric weighted graph over a point set.
+ *
+ * Vertices are numbered in an internal, spatially coherent order (Morton / Z-order
+ * of the positions), which keeps neighbours close in memory: sparse products over
+ * this graph are several times faster than in scan or random order.
+ * `order[v]` is the row of the caller's point matrix that vertex `v` stands for.
+ *
+ * Adjacency is stored once per direction in CSR form: the neighbours of vertex v are
+ * `col[row_ptr[v] .. row_ptr[v+1])`, sorted by increasing index, with the Gaussian
+ * weights `weight[...]` at the same positions. The matrix is exactly symmetric
+ * (w_ij == w_ji, bit for bit) and has no self loops.
+ */
+struct PointGraph
+{
+  std::vector<std::uint64_t> row_ptr;  ///< N + 1 offsets into col / weight
+  std::vector<VertexIndex> col;        ///< neighbour vertex of each stored entry
+  std::vector<float> weight;           ///< w_ij = exp(-|p_i - p_j|^2 / (2 theta^2))
+  std::vector<VertexIndex> order;      ///< order[v] = caller's row of vertex v
+  double sigma = 0.0;                  ///< theta actually used for the weights
+  double spacing = 0.0;                ///< mean distance of a point to its k nearest neighbours
+
+  /** \brief Number of vertices N. */
+  std::size_t
+  numVertices () const { return order.size (); }
+
+  /** \brief Number of stored entries (twice the number of undirected edges). */
+  std::size_t
+  numEntries () const { return col.size (); }
+
+  /** \brief Number of undirected edges, each counted once. */
+  std::size_t
+  numEdges () const { return col.size () / 2; }
+
+  /** \brief Bytes held by the graph's arrays (its memory footprint). */
+  std::size_t
+  memoryBytes () const;
+};
+
+/** \brief Parameters of the symmetrised k-nearest-neighbour graph.
+ *
+ * Vertex i is linked to j when j is among the k nearest neighbours of i OR i is among
+ * the k nearest neighbours of j (the paper's rule). A non-mutual edge is weighted
+ * exactly like a mutual one: its weight depends on its length only, and an edge
+ * found from both ends is stored once, not counted twice.
+ */
+struct KnnGraphParams
+{
+  /** Number of nearest neighbours searched per point (excluding the point itself).
+   *  Valid: k >= 1. With fewer than k + 1 points, every point links to all others. */
+  int k = 10;
+  /** Gaussian kernel width theta, in the points' units. 0 (default) derives it from
+   *  the data: theta = spacing / sqrt(2), spacing = mean k-NN distance (GSPBox's
+   *  convention), so the graph is invariant to the cloud's unit. Valid: >= 0, finite. */
+  double sigma = 0.0;
+  /** Worker threads; 0 = all hardware threads. The result does not depend on it. */
+  int num_threads = 0;
+};
+
+/** \brief Parameters of the epsilon-radius graph (edge when |p_i - p_j| < epsilon). */
+struct RadiusGraphParams
+{
+  /** Radius epsilon in the points' units. 0 (default) derives it from the data:
+   *  epsilon = radius_factor * spacing, with spacing the median over the points of
+   *  their mean distance to their `spacing_k` nearest neighbours (the median keeps
+   *  far outliers from inflating it). Valid: >= 0, finite. */
+  double radius = 0.0;
+  /** Kernel width theta; 0 (default) = spacing / sqrt(2), as for the k-NN graph. */
+  double sigma = 0.0;
+  /** Multiple of the spacing used for the default radius. Valid: > 0, finite. */
+  double radius_factor = 2.0;
+  /** Neighbours used to estimate the spacing. Valid: >= 1. */
+  int spacing_k = 10;
+  /** Worker threads; 0 = all hardware threads. The result does not depend on it. */
+  int num_threads = 0;
+};
+
+/** \brief Build the symmetrised k-NN graph of the finite points in `points`.
+ *  \throws std::invalid_argument on invalid parameters, non-finite points, or more
+ *  than 2^32 - 1 points. An empty point set gives an empty graph. */
+PointGraph
+buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params = {});
+
+/** \brief Build the epsilon-radius graph of `points` (see RadiusGraphParams).
+ *  \param[out] radius_used if not null, receives the epsilon actually used.
+ *  \throws std::invalid_argument as buildKnnGraph. */
+PointGraph
+buildRadiusGraph (const PointMatrix &points, const RadiusGraphParams &params = {},
+                  double *radius_used = nullptr);
+
+/** \brief Weighted degrees of the epsilon-radius graph, without storing the graph. */
+struct RadiusDegrees
+{
+  std::vector<double> degree;  ///< degree of each point, in the caller's row order
+  double radius = 0.0;         ///< epsilon used
+  double sigma = 0.0;          ///< theta used
+  double spacing = 0.0;        ///< median mean k-NN distance (the derived scale)
+};
+
+/** \brief The weighted degree of every point in the epsilon-radius graph of `points`
+ *  (the same graph and weights as buildRadiusGraph), computed while searching: the
+ *  edges are never stored, so memory stays at O(N) for any radius.
+ *  \throws std::invalid_argument as buildKnnGraph. */
+RadiusDegrees
+radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params = {});
+
+/** \brief Gaussian edge weight exp(-d2 / (2 sigma^2)) of a squared length d2.
+ *  Coincident points (d2 == 0) weigh 1 for any sigma; with sigma == 0 every other
+ *  edge weighs 0 (the limit of the kernel). */
+float
+gaussianWeight (double squared_distance, double sigma);
+
+} // namespace core
+} // namespace pcl_graph_denoise

@@ -1,0 +1,184 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl/filters/filter_indices.h>
+
+namespace pcl_graph_denoise {
+
+/** \brief Removes outliers by their weighted degree in an epsilon-radius graph
+ *  (Schoenenberger, Paratte, Vandergheynst, "Graph-based denoising for time-varying
+ *  point clouds", 2015, section 3.1).
+ *
+ * Every finite point named by the indices is linked to the other points closer than
+ * epsilon, with the Gaussian weight exp(-d^2 / (2 theta^2)). A point's degree is the
+ * sum of its weights: an outlier has few close neighbours and a low degree. Points
+ * whose degree is below the threshold tau are removed; alternatively, a given
+ * fraction of the lowest-degree points is removed (the paper's percentile rule).
+ *
+ * Defaults are derived from the data, so that the same cloud in millimetres or in
+ * metres gives the same result (see the setters). Points with a non-finite
+ * coordinate are always removed (also with setNegative(true)) and are never used
+ * as queries or as neighbours. The full pcl::FilterIndices contract holds:
+ * indices, negative mode, removed indices, organised output, in-place use.
+ *
+ * Invalid parameters or indices are reported with PCL_ERROR when filter() runs,
+ * which then returns an empty result; nothing throws out of filter().
+ *
+ * \code
+ * pcl_graph_denoise::GraphDegreeOutlierRemoval<pcl::PointXYZ> outliers;
+ * outliers.setInputCloud (cloud);
+ * outliers.filter (*cleaned);   // all parameters derived from the data
+ * \endcode
+ */
+template <typename PointT>
+class GraphDegreeOutlierRemoval : public pcl::FilterIndices<PointT>
+{
+protected:
+  using PointCloud = typename pcl::FilterIndices<PointT>::PointCloud;
+  using pcl::FilterIndices<PointT>::extract_removed_indices_;
+  using pcl::FilterIndices<PointT>::filter_name_;
+  using pcl::FilterIndices<PointT>::getClassName;
+  using pcl::FilterIndices<PointT>::indices_;
+  using pcl::FilterIndices<PointT>::input_;
+  using pcl::FilterIndices<PointT>::negative_;
+  using pcl::FilterIndices<PointT>::removed_indices_;
+
+public:
+  using Ptr = std::shared_ptr<GraphDegreeOutlierRemoval<PointT>>;
+  using ConstPtr = std::shared_ptr<const GraphDegreeOutlierRemoval<PointT>>;
+
+  /** \brief How the degree threshold is chosen. */
+  enum ThresholdRule
+  {
+    AUTOMATIC_THRESHOLD,  ///< tau = getAutomaticThresholdRatio() x median degree (default)
+    ABSOLUTE_THRESHOLD,   ///< tau as given to setDegreeThreshold()
+    OUTLIER_FRACTION      ///< remove the fraction given to setOutlierFraction()
+  };
+
+  /** \brief Constructor.
+   *  \param[in] extract_removed_indices set to true to retrieve the removed points'
+   *  indices with getRemovedIndices(). */
+  explicit GraphDegreeOutlierRemoval (bool extract_removed_indices = false)
+  : pcl::FilterIndices<PointT> (extract_removed_indices)
+  {
+    filter_name_ = "GraphDegreeOutlierRemoval";
+  }
+
+  /** \brief Radius epsilon of the graph, in the cloud's units: points closer than
+   *  epsilon are linked. Default 0 = derived from the data: 2 x the median over the
+   *  points of their mean distance to their 10 nearest neighbours. Valid: >= 0. */
+  inline void
+  setRadiusSearch (double epsilon) { radius_ = epsilon; }
+
+  /** \brief The radius set (0 = derived from the data). */
+  inline double
+  getRadiusSearch () const { return radius_; }
+
+  /** \brief Kernel width theta of the weights exp(-d^2 / (2 theta^2)), in the cloud's
+   *  units. Default 0 = derived from the data: the median mean 10-NN distance / sqrt(2).
+   *  Valid: >= 0. */
+  inline void
+  setSigma (double theta) { sigma_ = theta; }
+
+  /** \brief The kernel width set (0 = derived from the data). */
+  inline double
+  getSigma () const { return sigma_; }
+
+  /** \brief Removes the points whose weighted degree is below tau (unitless: a sum of
+   *  weights in [0, 1]). Selects ABSOLUTE_THRESHOLD. Valid: >= 0. */
+  inline void
+  setDegreeThreshold (double tau)
+  {
+    degree_threshold_ = tau;
+    rule_ = ABSOLUTE_THRESHOLD;
+  }
+
+  /** \brief The absolute threshold set (used with ABSOLUTE_THRESHOLD). */
+  inline double
+  getDegreeThreshold () const { return degree_threshold_; }
+
+  /** \brief Removes instead the fraction p of the finite points with the lowest
+   *  degree (round(p x count) points; ties broken by index). Selects
+   *  OUTLIER_FRACTION. Valid: 0 <= p <= 1. */
+  inline void
+  setOutlierFraction (double p)
+  {
+    outlier_fraction_ = p;
+    rule_ = OUTLIER_FRACTION;
+  }
+
+  /** \brief The fraction set (used with OUTLIER_FRACTION). */
+  inline double
+  getOutlierFraction () const { return outlier_fraction_; }
+
+  /** \brief Chooses tau from the data: tau = ratio x the median degree of the
+   *  finite points. Selects AUTOMATIC_THRESHOLD (the default rule). Default ratio
+   *  0.05. Valid: >= 0. */
+  inline void
+  setAutomaticThresholdRatio (double ratio)
+  {
+    automatic_ratio_ = ratio;
+    rule_ = AUTOMATIC_THRESHOLD;
+  }
+
+  /** \brief The ratio used by AUTOMATIC_THRESHOLD. */
+  inline double
+  getAutomaticThresholdRatio () const { return automatic_ratio_; }
+
+  /** \brief The rule in force (set by the last of the three setters above). */
+  inline ThresholdRule
+  getThresholdRule () const { return rule_; }
+
+  /** \brief Worker threads; 0 (default) = all hardware threads. The result does not
+   *  depend on it. Valid: >= 0. */
+  inline void
+  setNumberOfThreads (int num_threads) { num_threads_ = num_threads; }
+
+  /** \brief The number of threads set. */
+  inline int
+  getNumberOfThreads () const { return num_threads_; }
+
+  /** \brief Epsilon used by the last filter() call (after derivation), 0 before. */
+  inline double
+  getUsedRadius () const { return used_radius_; }
+
+  /** \brief Theta used by the last filter() call (after derivation), 0 before. */
+  inline double
+  getUsedSigma () const { return used_sigma_; }
+
+  /** \brief Threshold used by the last filter() call: points with a degree below it
+   *  were outliers. */
+  inline double
+  getUsedDegreeThreshold () const { return used_threshold_; }
+
+protected:
+  /** \brief Filtered results are indexed by an indices array. */
+  void
+  applyFilter (pcl::Indices &indices) override;
+
+private:
+  /** \brief Empty the result after an error. */
+  void
+  fail (pcl::Indices &indices);
+
+  double radius_ = 0.0;
+  double sigma_ = 0.0;
+  double degree_threshold_ = 0.0;
+  double outlier_fraction_ = 0.0;
+  double automatic_ratio_ = 0.05;
+  ThresholdRule rule_ = AUTOMATIC_THRESHOLD;
+  int num_threads_ = 0;
+
+  double used_radius_ = 0.0;
+  double used_sigma_ = 0.0;
+  double used_threshold_ = 0.0;
+};
+
+} // namespace pcl_graph_denoise
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_graph_denoise/impl/graph_degree_outlier_removal.hpp>
+#endif

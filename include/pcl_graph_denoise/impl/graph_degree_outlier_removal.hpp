@@ -1,0 +1,143 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl_graph_denoise/core/graph.h>
+#include <pcl_graph_denoise/graph_degree_outlier_removal.h>
+#include <pcl_graph_denoise/point_cloud_adaptor.h>
+
+#include <pcl/console/print.h>
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <numeric>
+
+namespace pcl_graph_denoise {
+
+template <typename PointT>
+void
+GraphDegreeOutlierRemoval<PointT>::fail (pcl::Indices &indices)
+{
+  indices.clear ();
+  removed_indices_->clear ();
+}
+
+template <typename PointT>
+void
+GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
+{
+  const std::string name = getClassName ();
+  const auto invalid = [&] (const char *parameter, double value, const char *range) {
+    PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] Invalid %s = %g: must be %s.\n",
+               name.c_str (), parameter, value, range);
+    fail (indices);
+  };
+  if (!(std::isfinite (radius_) && radius_ >= 0.0))
+    return invalid ("radius (setRadiusSearch)", radius_, "finite and >= 0");
+  if (!(std::isfinite (sigma_) && sigma_ >= 0.0))
+    return invalid ("sigma (setSigma)", sigma_, "finite and >= 0");
+  if (rule_ == ABSOLUTE_THRESHOLD && !(std::isfinite (degree_threshold_) && degree_threshold_ >= 0.0))
+    return invalid ("degree threshold (setDegreeThreshold)", degree_threshold_, "finite and >= 0");
+  if (rule_ == OUTLIER_FRACTION && !(outlier_fraction_ >= 0.0 && outlier_fraction_ <= 1.0))
+    return invalid ("outlier fraction (setOutlierFraction)", outlier_fraction_, "in [0, 1]");
+  if (rule_ == AUTOMATIC_THRESHOLD && !(std::isfinite (automatic_ratio_) && automatic_ratio_ >= 0.0))
+    return invalid ("threshold ratio (setAutomaticThresholdRatio)", automatic_ratio_,
+                    "finite and >= 0");
+  if (num_threads_ < 0)
+    return invalid ("number of threads (setNumberOfThreads)", num_threads_, ">= 0");
+  const std::string bad_index = checkIndices (*input_, *indices_);
+  if (!bad_index.empty ())
+  {
+    PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] Invalid indices: %s.\n", name.c_str (),
+               bad_index.c_str ());
+    return fail (indices);
+  }
+
+  const GatheredPoints gathered = gatherFinitePoints (*input_, *indices_);
+  if (gathered.repeated > 0)
+    PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] %zu repeated indices were used once.\n",
+              name.c_str (), gathered.repeated);
+
+  // Degree of every gathered row.
+  const std::size_t count = gathered.cloud_index.size ();
+  if (count == 0)
+    PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] The input has no finite point to "
+               "filter (%zu points, %zu indices).\n",
+               name.c_str (), input_->size (), indices_->size ());
+  std::vector<double> degree;
+  try
+  {
+    core::RadiusGraphParams params;
+    params.radius = radius_;
+    params.sigma = sigma_;
+    params.num_threads = num_threads_;
+    core::RadiusDegrees result = core::radiusGraphDegrees (gathered.xyz, params);
+    used_radius_ = result.radius;
+    used_sigma_ = result.sigma;
+    degree = std::move (result.degree);
+  }
+  catch (const std::exception &e)
+  {
+    PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] %s.\n", name.c_str (), e.what ());
+    return fail (indices);
+  }
+
+  // Inlier flag of every gathered row, by the rule in force.
+  std::vector<std::uint8_t> inlier (count, 1);
+  if (rule_ == OUTLIER_FRACTION)
+  {
+    const auto removed = static_cast<std::size_t> (std::llround (outlier_fraction_ * double (count)));
+    std::vector<std::size_t> by_degree (count);
+    std::iota (by_degree.begin (), by_degree.end (), std::size_t (0));
+    std::stable_sort (by_degree.begin (), by_degree.end (),
+                      [&] (std::size_t a, std::size_t b) { return degree[a] < degree[b]; });
+    for (std::size_t r = 0; r < removed; ++r)
+      inlier[by_degree[r]] = 0;
+    used_threshold_ = removed < count ? degree[by_degree[removed]]
+                                      : std::numeric_limits<double>::infinity ();
+  }
+  else
+  {
+    used_threshold_ = degree_threshold_;
+    if (rule_ == AUTOMATIC_THRESHOLD)
+    {
+      std::vector<double> sorted = degree;
+      double median = 0.0;
+      if (!sorted.empty ())
+      {
+        std::nth_element (sorted.begin (), sorted.begin () + count / 2, sorted.end ());
+        median = sorted[count / 2];
+      }
+      used_threshold_ = automatic_ratio_ * median;
+    }
+    for (std::size_t r = 0; r < count; ++r)
+      inlier[r] = degree[r] >= used_threshold_;
+  }
+
+  // Walk the caller's index list in its order: kept points to `indices`, the rest
+  // (and every non-finite point) to the removed indices.
+  std::vector<std::uint8_t> state (input_->size (), 0);  // 1 kept, 2 removed, 3 done
+  for (std::size_t r = 0; r < count; ++r)
+    state[gathered.cloud_index[r]] = (inlier[r] != 0) != negative_ ? 1 : 2;
+  for (const auto index : gathered.non_finite)
+    state[index] = 2;
+  indices.clear ();
+  indices.reserve (count);
+  removed_indices_->clear ();
+  for (const auto index : *indices_)
+  {
+    if (state[index] == 1)
+      indices.push_back (index);
+    else if (state[index] == 2 && extract_removed_indices_)
+      removed_indices_->push_back (index);
+    state[index] = 3;
+  }
+}
+
+} // namespace pcl_graph_denoise
+
+#define PCL_INSTANTIATE_GraphDegreeOutlierRemoval(T)                                         \
+  template class pcl_graph_denoise::GraphDegreeOutlierRemoval<T>;

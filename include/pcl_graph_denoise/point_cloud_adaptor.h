@@ -1,0 +1,114 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+/** \file point_cloud_adaptor.h
+ *  \brief The thin layer between PCL clouds and the numerical core: gathers the
+ *  finite points a filter is asked to process into a plain matrix, and names
+ *  where each row came from.
+ */
+
+#include <pcl_graph_denoise/core/graph.h>
+
+#include <pcl/point_cloud.h>
+#include <pcl/types.h>
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pcl_graph_denoise {
+
+/** \brief The finite points named by an index list, ready for the core. */
+struct GatheredPoints
+{
+  /** Positions relative to `origin`, one row per finite point, in index-list order.
+   *  Centring in double keeps float precision for geo-referenced coordinates. */
+  core::PointMatrix xyz;
+  /** cloud_index[r] is the index in the cloud of row r of xyz. */
+  pcl::Indices cloud_index;
+  /** Indices (from the list, in its order) of points with a non-finite coordinate. */
+  pcl::Indices non_finite;
+  /** Number of entries of the list that repeat an earlier entry (used once). */
+  std::size_t repeated = 0;
+  /** Subtracted from every position (mean of the finite points). */
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero ();
+};
+
+/** \brief Checks an index list against a cloud; returns an empty string when every
+ *  index is in range, else a description of the first bad one. */
+template <typename PointT>
+std::string
+checkIndices (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &indices)
+{
+  for (const auto index : indices)
+    if (index < 0 || static_cast<std::size_t> (index) >= cloud.size ())
+      return "index " + std::to_string (index) + " is out of range for a cloud of " +
+             std::to_string (cloud.size ()) + " points";
+  return {};
+}
+
+/** \brief True when x, y and z of a point are all finite. */
+template <typename PointT>
+inline bool
+isFinitePosition (const PointT &p)
+{
+  return std::isfinite (p.x) && std::isfinite (p.y) && std::isfinite (p.z);
+}
+
+/** \brief Gathers the finite points of `cloud` named by `indices` (which must be in
+ *  range, see checkIndices). A repeated index is used once, at its first place. */
+template <typename PointT>
+GatheredPoints
+gatherFinitePoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &indices)
+{
+  GatheredPoints out;
+  std::vector<std::uint8_t> seen (cloud.size (), 0);
+  out.cloud_index.reserve (indices.size ());
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero ();
+  for (const auto index : indices)
+  {
+    if (seen[index])
+    {
+      ++out.repeated;
+      continue;
+    }
+    seen[index] = 1;
+    const PointT &p = cloud[index];
+    if (!isFinitePosition (p))
+    {
+      out.non_finite.push_back (index);
+      continue;
+    }
+    out.cloud_index.push_back (index);
+    sum += Eigen::Vector3d (p.x, p.y, p.z);
+  }
+  const auto rows = static_cast<Eigen::Index> (out.cloud_index.size ());
+  if (rows > 0)
+    out.origin = sum / double (rows);
+  out.xyz.resize (rows, 3);
+  for (Eigen::Index r = 0; r < rows; ++r)
+  {
+    const PointT &p = cloud[out.cloud_index[r]];
+    out.xyz (r, 0) = static_cast<float> (double (p.x) - out.origin.x ());
+    out.xyz (r, 1) = static_cast<float> (double (p.y) - out.origin.y ());
+    out.xyz (r, 2) = static_cast<float> (double (p.z) - out.origin.z ());
+  }
+  return out;
+}
+
+/** \brief A vertex-indexed value of a graph, moved to the rows of the gathered matrix. */
+template <typename T>
+std::vector<T>
+toGatheredOrder (const core::PointGraph &graph, const std::vector<T> &by_vertex)
+{
+  std::vector<T> by_row (by_vertex.size ());
+  for (std::size_t v = 0; v < by_vertex.size (); ++v)
+    by_row[graph.order[v]] = by_vertex[v];
+  return by_row;
+}
+
+} // namespace pcl_graph_denoise

@@ -1,0 +1,362 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include <pcl_graph_denoise/core/graph.h>
+
+#include "neighbor_search.h"
+#include "parallel.h"
+#include "spatial_order.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace pcl_graph_denoise {
+namespace core {
+
+namespace {
+
+constexpr std::size_t kBlock = 2048;
+
+void
+requireValid (bool ok, const std::string &what)
+{
+  if (!ok)
+    throw std::invalid_argument (what);
+}
+
+void
+validatePoints (const PointMatrix &points)
+{
+  requireValid (static_cast<std::uint64_t> (points.rows ()) <
+                    std::numeric_limits<VertexIndex>::max (),
+                "too many points for 32-bit vertex indices");
+  requireValid (points.allFinite (), "points must be finite");
+}
+
+void
+validateThreads (int num_threads)
+{
+  requireValid (num_threads >= 0, "num_threads must be >= 0");
+}
+
+void
+validateLength (double value, const char *name)
+{
+  requireValid (std::isfinite (value) && value >= 0.0,
+                std::string (name) + " must be finite and >= 0");
+}
+
+/** Out-going neighbour lists of a directed graph, CSR-like. */
+struct DirectedLists
+{
+  std::vector<std::uint64_t> ptr;
+  std::vector<VertexIndex> idx;
+};
+
+double
+squaredDistance (const PointMatrix &p, VertexIndex i, VertexIndex j)
+{
+  const double dx = double (p (i, 0)) - double (p (j, 0));
+  const double dy = double (p (i, 1)) - double (p (j, 1));
+  const double dz = double (p (i, 2)) - double (p (j, 2));
+  return dx * dx + dy * dy + dz * dz;
+}
+
+/** Union of a directed graph and its transpose (edge if i->j or j->i), weighted by
+ *  the Gaussian of the edge length. Rows come out sorted, without duplicates. */
+void
+symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, int num_threads,
+            PointGraph &graph)
+{
+  const std::size_t n = static_cast<std::size_t> (points.rows ());
+
+  // Transpose by counting; filling in increasing source order keeps rows sorted.
+  std::vector<std::uint64_t> tptr (n + 1, 0);
+  for (const VertexIndex j : directed.idx)
+    ++tptr[j + 1];
+  std::partial_sum (tptr.begin (), tptr.end (), tptr.begin ());
+  std::vector<VertexIndex> tidx (directed.idx.size ());
+  {
+    std::vector<std::uint64_t> fill (tptr.begin (), tptr.end () - 1);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::uint64_t e = directed.ptr[i]; e < directed.ptr[i + 1]; ++e)
+        tidx[fill[directed.idx[e]]++] = static_cast<VertexIndex> (i);
+  }
+
+  // Sort out-going rows, then count the size of each merged row.
+  std::vector<std::uint64_t> row_size (n + 1, 0);
+  detail::parallelFor (
+      n, num_threads,
+      [&] (std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i)
+        {
+          auto first = directed.idx.begin () + directed.ptr[i];
+          auto last = directed.idx.begin () + directed.ptr[i + 1];
+          std::sort (first, last);
+          auto tfirst = tidx.begin () + tptr[i];
+          auto tlast = tidx.begin () + tptr[i + 1];
+          std::uint64_t count = 0;
+          while (first != last || tfirst != tlast)
+          {
+            if (tfirst == tlast || (first != last && *first < *tfirst))
+              ++first;
+            else if (first == last || *tfirst < *first)
+              ++tfirst;
+            else
+              ++first, ++tfirst;
+            ++count;
+          }
+          row_size[i + 1] = count;
+        }
+      },
+      kBlock);
+
+  graph.row_ptr.assign (n + 1, 0);
+  std::partial_sum (row_size.begin (), row_size.end (), graph.row_ptr.begin ());
+  graph.col.resize (graph.row_ptr[n]);
+  graph.weight.resize (graph.row_ptr[n]);
+
+  detail::parallelFor (
+      n, num_threads,
+      [&] (std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i)
+        {
+          auto first = directed.idx.begin () + directed.ptr[i];
+          auto last = directed.idx.begin () + directed.ptr[i + 1];
+          auto tfirst = tidx.begin () + tptr[i];
+          auto tlast = tidx.begin () + tptr[i + 1];
+          std::uint64_t out = graph.row_ptr[i];
+          while (first != last || tfirst != tlast)
+          {
+            VertexIndex j;
+            if (tfirst == tlast || (first != last && *first < *tfirst))
+              j = *first++;
+            else if (first == last || *tfirst < *first)
+              j = *tfirst++;
+            else
+              j = *first++, ++tfirst;
+            graph.col[out] = j;
+            graph.weight[out] =
+                gaussianWeight (squaredDistance (points, static_cast<VertexIndex> (i), j), sigma);
+            ++out;
+          }
+        }
+      },
+      kBlock);
+}
+
+/** Per-point mean distance to its k nearest other points (k < n). Also fills the
+ *  directed k-NN lists when `lists` is not null. */
+std::vector<double>
+meanKnnDistances (const detail::KdTree &tree, std::size_t n, int k, int num_threads,
+                  DirectedLists *lists)
+{
+  std::vector<double> mean (n, 0.0);
+  if (lists)
+  {
+    lists->ptr.resize (n + 1);
+    for (std::size_t i = 0; i <= n; ++i)
+      lists->ptr[i] = static_cast<std::uint64_t> (i) * k;
+    lists->idx.resize (n * static_cast<std::size_t> (k));
+  }
+  detail::parallelFor (
+      n, num_threads,
+      [&] (std::size_t begin, std::size_t end) {
+        std::vector<VertexIndex> idx (k), scratch_idx;
+        std::vector<float> d2 (k), scratch_d2;
+        for (std::size_t i = begin; i < end; ++i)
+        {
+          VertexIndex *out = lists ? lists->idx.data () + i * k : idx.data ();
+          tree.nearestOthers (static_cast<VertexIndex> (i), k, out, d2.data (), scratch_idx,
+                              scratch_d2);
+          double sum = 0.0;
+          for (int m = 0; m < k; ++m)
+            sum += std::sqrt (double (d2[m]));
+          mean[i] = sum / k;
+        }
+      },
+      kBlock);
+  return mean;
+}
+
+/** Reorders the points along the Morton curve and records the order in `graph`. */
+PointMatrix
+orderVertices (const PointMatrix &points, PointGraph &graph)
+{
+  graph.order = detail::mortonOrder (points);
+  return detail::reorderPoints (points, graph.order);
+}
+
+} // namespace
+
+std::size_t
+PointGraph::memoryBytes () const
+{
+  return row_ptr.size () * sizeof (std::uint64_t) + col.size () * sizeof (VertexIndex) +
+         weight.size () * sizeof (float) + order.size () * sizeof (VertexIndex);
+}
+
+float
+gaussianWeight (double squared_distance, double sigma)
+{
+  if (squared_distance <= 0.0)
+    return 1.0f;
+  if (sigma <= 0.0)
+    return 0.0f;
+  // Single precision exp: the weights are stored as float anyway, and it is the
+  // hottest call of the graph assembly.
+  return std::exp (static_cast<float> (-squared_distance / (2.0 * sigma * sigma)));
+}
+
+PointGraph
+buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params)
+{
+  requireValid (params.k >= 1, "k must be >= 1");
+  validateLength (params.sigma, "sigma");
+  validateThreads (params.num_threads);
+  validatePoints (points);
+
+  PointGraph graph;
+  const PointMatrix ordered = orderVertices (points, graph);
+  const std::size_t n = graph.order.size ();
+  graph.row_ptr.assign (n + 1, 0);
+  if (n < 2)
+    return graph;
+
+  const int k = static_cast<int> (std::min<std::size_t> (params.k, n - 1));
+  const detail::KdTree tree (ordered);
+  DirectedLists directed;
+  const std::vector<double> mean = meanKnnDistances (tree, n, k, params.num_threads, &directed);
+  graph.spacing = std::accumulate (mean.begin (), mean.end (), 0.0) / double (n);
+  graph.sigma = params.sigma > 0.0 ? params.sigma : graph.spacing / std::sqrt (2.0);
+  symmetrise (ordered, directed, graph.sigma, params.num_threads, graph);
+  return graph;
+}
+
+namespace {
+
+/** What both uses of the epsilon-graph share: parameters checked, points in Morton
+ *  order, the spacing, theta and epsilon derived, and a k-d tree to search. */
+struct RadiusSearch
+{
+  PointGraph graph;  // order, spacing and sigma set; no edges yet
+  PointMatrix ordered;
+  double radius = 0.0;
+  std::unique_ptr<detail::KdTree> tree;
+};
+
+RadiusSearch
+prepareRadiusSearch (const PointMatrix &points, const RadiusGraphParams &params)
+{
+  validateLength (params.radius, "radius");
+  validateLength (params.sigma, "sigma");
+  requireValid (std::isfinite (params.radius_factor) && params.radius_factor > 0.0,
+                "radius_factor must be finite and > 0");
+  requireValid (params.spacing_k >= 1, "spacing_k must be >= 1");
+  validateThreads (params.num_threads);
+  validatePoints (points);
+
+  RadiusSearch search;
+  search.ordered = orderVertices (points, search.graph);
+  const std::size_t n = search.graph.order.size ();
+  search.graph.row_ptr.assign (n + 1, 0);
+  search.radius = params.radius;
+  if (n < 2)
+    return search;
+  search.tree.reset (new detail::KdTree (search.ordered));
+  const int k = static_cast<int> (std::min<std::size_t> (params.spacing_k, n - 1));
+  std::vector<double> mean = meanKnnDistances (*search.tree, n, k, params.num_threads, nullptr);
+  std::nth_element (mean.begin (), mean.begin () + n / 2, mean.end ());
+  search.graph.spacing = mean[n / 2];
+  search.graph.sigma = params.sigma > 0.0 ? params.sigma : search.graph.spacing / std::sqrt (2.0);
+  if (params.radius == 0.0)
+    search.radius = params.radius_factor * search.graph.spacing;
+  return search;
+}
+
+} // namespace
+
+PointGraph
+buildRadiusGraph (const PointMatrix &points, const RadiusGraphParams &params,
+                  double *radius_used)
+{
+  RadiusSearch search = prepareRadiusSearch (points, params);
+  if (radius_used)
+    *radius_used = search.radius;
+  const std::size_t n = search.graph.numVertices ();
+  if (n < 2)
+    return std::move (search.graph);
+
+  // Each block of queries fills its own slot, so the lists come out in vertex order
+  // whatever the scheduling.
+  const std::size_t num_blocks = (n + kBlock - 1) / kBlock;
+  std::vector<std::vector<VertexIndex>> block_idx (num_blocks);
+  DirectedLists directed;
+  directed.ptr.assign (n + 1, 0);
+  detail::parallelFor (
+      n, params.num_threads,
+      [&] (std::size_t begin, std::size_t end) {
+        std::vector<std::pair<VertexIndex, float>> scratch;
+        auto &idx = block_idx[begin / kBlock];
+        for (std::size_t i = begin; i < end; ++i)
+        {
+          const std::size_t before = idx.size ();
+          search.tree->othersWithin (static_cast<VertexIndex> (i),
+                                     static_cast<float> (search.radius), idx, scratch);
+          directed.ptr[i + 1] = idx.size () - before;
+        }
+      },
+      kBlock);
+  std::partial_sum (directed.ptr.begin (), directed.ptr.end (), directed.ptr.begin ());
+  directed.idx.reserve (directed.ptr[n]);
+  for (auto &idx : block_idx)
+  {
+    directed.idx.insert (directed.idx.end (), idx.begin (), idx.end ());
+    std::vector<VertexIndex> ().swap (idx);
+  }
+  // Within-radius is symmetric already; the union only guards against a pair that
+  // the tree's pruning would see from one side alone.
+  symmetrise (search.ordered, directed, search.graph.sigma, params.num_threads, search.graph);
+  return std::move (search.graph);
+}
+
+RadiusDegrees
+radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params)
+{
+  RadiusSearch search = prepareRadiusSearch (points, params);
+  RadiusDegrees out;
+  out.radius = search.radius;
+  out.sigma = search.graph.sigma;
+  out.spacing = search.graph.spacing;
+  const std::size_t n = search.graph.numVertices ();
+  out.degree.assign (n, 0.0);
+  if (n < 2)
+    return out;
+  detail::parallelFor (
+      n, params.num_threads,
+      [&] (std::size_t begin, std::size_t end) {
+        std::vector<std::pair<VertexIndex, float>> scratch;
+        std::vector<VertexIndex> neighbors;
+        for (std::size_t i = begin; i < end; ++i)
+        {
+          neighbors.clear ();
+          const auto vi = static_cast<VertexIndex> (i);
+          search.tree->othersWithin (vi, static_cast<float> (search.radius), neighbors, scratch);
+          double degree = 0.0;
+          for (const VertexIndex j : neighbors)
+            degree += gaussianWeight (squaredDistance (search.ordered, vi, j), out.sigma);
+          out.degree[search.graph.order[i]] = degree;
+        }
+      },
+      kBlock);
+  return out;
+}
+
+} // namespace core
+} // namespace pcl_graph_denoise

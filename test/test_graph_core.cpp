@@ -1,0 +1,424 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ *
+ * The numerical core against brute force on seeded random clouds.
+ */
+#include <pcl_graph_denoise/core/graph.h>
+#include <pcl_graph_denoise/core/operators.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+#include <set>
+#include <stdexcept>
+
+using namespace pcl_graph_denoise::core;
+
+namespace {
+
+PointMatrix
+randomPoints (int n, std::uint64_t seed, float scale = 1.0f)
+{
+  std::mt19937_64 rng (seed);
+  std::uniform_real_distribution<float> u (-1.0f, 1.0f);
+  PointMatrix p (n, 3);
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d)
+      p (i, d) = scale * u (rng);
+  return p;
+}
+
+Signal3
+randomSignal (std::size_t n, std::uint64_t seed)
+{
+  std::mt19937_64 rng (seed);
+  std::normal_distribution<double> g;
+  Signal3 x (n, 3);
+  for (Eigen::Index i = 0; i < x.rows (); ++i)
+    for (int d = 0; d < 3; ++d)
+      x (i, d) = g (rng);
+  return x;
+}
+
+double
+dist2 (const PointMatrix &p, int i, int j)
+{
+  return (p.row (i).cast<double> () - p.row (j).cast<double> ()).squaredNorm ();
+}
+
+/** Brute-force k nearest other points, by (distance, index). */
+std::vector<std::vector<int>>
+bruteKnn (const PointMatrix &p, int k)
+{
+  const int n = static_cast<int> (p.rows ());
+  std::vector<std::vector<int>> out (n);
+  for (int i = 0; i < n; ++i)
+  {
+    std::vector<std::pair<double, int>> all;
+    for (int j = 0; j < n; ++j)
+      if (j != i)
+        all.emplace_back (dist2 (p, i, j), j);
+    std::sort (all.begin (), all.end ());
+    for (int m = 0; m < k; ++m)
+      out[i].push_back (all[m].second);
+  }
+  return out;
+}
+
+/** The graph's edges as a map from (caller's i, caller's j) to weight. */
+std::map<std::pair<int, int>, float>
+edgesInCallerOrder (const PointGraph &g)
+{
+  std::map<std::pair<int, int>, float> edges;
+  for (std::size_t v = 0; v < g.numVertices (); ++v)
+    for (auto e = g.row_ptr[v]; e < g.row_ptr[v + 1]; ++e)
+      edges[{int (g.order[v]), int (g.order[g.col[e]])}] = g.weight[e];
+  return edges;
+}
+
+void
+expectSameGraph (const PointGraph &a, const PointGraph &b)
+{
+  EXPECT_EQ (a.order, b.order);
+  EXPECT_EQ (a.row_ptr, b.row_ptr);
+  EXPECT_EQ (a.col, b.col);
+  EXPECT_EQ (a.weight, b.weight);
+  EXPECT_EQ (a.sigma, b.sigma);
+  EXPECT_EQ (a.spacing, b.spacing);
+}
+
+} // namespace
+
+TEST (KnnGraph, MatchesBruteForceNeighboursAndWeights)
+{
+  const PointMatrix p = randomPoints (400, 1);
+  const int k = 7;
+  KnnGraphParams params;
+  params.k = k;
+  const PointGraph g = buildKnnGraph (p, params);
+  ASSERT_EQ (g.numVertices (), 400u);
+
+  const auto knn = bruteKnn (p, k);
+  std::set<std::pair<int, int>> expected;
+  double spacing = 0.0;
+  for (int i = 0; i < 400; ++i)
+    for (int j : knn[i])
+    {
+      expected.insert ({i, j});
+      expected.insert ({j, i});
+      spacing += std::sqrt (dist2 (p, i, j));
+    }
+  spacing /= 400.0 * k;
+  EXPECT_NEAR (g.spacing, spacing, 1e-6 * spacing);
+  EXPECT_NEAR (g.sigma, spacing / std::sqrt (2.0), 1e-6 * spacing);
+
+  const auto edges = edgesInCallerOrder (g);
+  std::set<std::pair<int, int>> got;
+  for (const auto &e : edges)
+    got.insert (e.first);
+  EXPECT_EQ (got, expected);
+  for (const auto &e : edges)
+  {
+    const double w = std::exp (-dist2 (p, e.first.first, e.first.second) / (2 * g.sigma * g.sigma));
+    EXPECT_NEAR (e.second, w, 1e-6);
+  }
+}
+
+TEST (KnnGraph, IsSymmetricSortedAndLoopFree)
+{
+  const PointGraph g = buildKnnGraph (randomPoints (1000, 2));
+  const auto edges = edgesInCallerOrder (g);
+  for (const auto &e : edges)
+  {
+    EXPECT_NE (e.first.first, e.first.second);
+    const auto back = edges.find ({e.first.second, e.first.first});
+    ASSERT_NE (back, edges.end ());
+    EXPECT_EQ (back->second, e.second);  // bit for bit
+  }
+  for (std::size_t v = 0; v < g.numVertices (); ++v)
+    EXPECT_TRUE (std::is_sorted (g.col.begin () + g.row_ptr[v], g.col.begin () + g.row_ptr[v + 1]));
+  // Every vertex has at least its k neighbours.
+  for (std::size_t v = 0; v < g.numVertices (); ++v)
+    EXPECT_GE (g.row_ptr[v + 1] - g.row_ptr[v], 10u);
+}
+
+TEST (KnnGraph, OrderIsAPermutation)
+{
+  const PointGraph g = buildKnnGraph (randomPoints (3000, 3));
+  std::vector<VertexIndex> sorted = g.order;
+  std::sort (sorted.begin (), sorted.end ());
+  for (std::size_t i = 0; i < sorted.size (); ++i)
+    ASSERT_EQ (sorted[i], i);
+}
+
+TEST (KnnGraph, ResultDoesNotDependOnThreadCount)
+{
+  const PointMatrix p = randomPoints (20000, 4);
+  KnnGraphParams one, two, five;
+  one.num_threads = 1;
+  two.num_threads = 2;
+  five.num_threads = 5;
+  const PointGraph a = buildKnnGraph (p, one);
+  expectSameGraph (a, buildKnnGraph (p, two));
+  expectSameGraph (a, buildKnnGraph (p, five));
+
+  RadiusGraphParams r1, r3;
+  r1.num_threads = 1;
+  r3.num_threads = 3;
+  expectSameGraph (buildRadiusGraph (p, r1), buildRadiusGraph (p, r3));
+}
+
+TEST (KnnGraph, UnitInvariantDefaults)
+{
+  const PointMatrix metres = randomPoints (2000, 5);
+  const PointMatrix millimetres = metres * 1000.0f;
+  const PointGraph a = buildKnnGraph (metres), b = buildKnnGraph (millimetres);
+  EXPECT_EQ (a.order, b.order);
+  EXPECT_EQ (a.col, b.col);
+  EXPECT_NEAR (b.sigma, 1000.0 * a.sigma, 1e-4 * b.sigma);
+  for (std::size_t e = 0; e < a.weight.size (); ++e)
+    ASSERT_NEAR (a.weight[e], b.weight[e], 1e-5);
+}
+
+TEST (KnnGraph, ExplicitSigmaIsUsed)
+{
+  KnnGraphParams params;
+  params.sigma = 0.25;
+  const PointMatrix p = randomPoints (300, 6);
+  const PointGraph g = buildKnnGraph (p, params);
+  EXPECT_EQ (g.sigma, 0.25);
+  const auto edges = edgesInCallerOrder (g);
+  for (const auto &e : edges)
+    EXPECT_NEAR (e.second, std::exp (-dist2 (p, e.first.first, e.first.second) / (2 * 0.0625)), 1e-6);
+}
+
+TEST (KnnGraph, KAtLeastNGivesTheCompleteGraph)
+{
+  KnnGraphParams params;
+  params.k = 10;
+  const PointGraph g = buildKnnGraph (randomPoints (5, 7), params);
+  ASSERT_EQ (g.numVertices (), 5u);
+  EXPECT_EQ (g.numEntries (), 20u);
+  EXPECT_EQ (g.numEdges (), 10u);
+}
+
+TEST (KnnGraph, EmptyAndSinglePoint)
+{
+  const PointGraph empty = buildKnnGraph (PointMatrix (0, 3));
+  EXPECT_EQ (empty.numVertices (), 0u);
+  EXPECT_EQ (empty.row_ptr.size (), 1u);
+  const PointGraph one = buildKnnGraph (randomPoints (1, 8));
+  EXPECT_EQ (one.numVertices (), 1u);
+  EXPECT_EQ (one.numEntries (), 0u);
+  EXPECT_TRUE (weightedDegree (one).at (0) == 0.0);
+}
+
+TEST (KnnGraph, DuplicatePointsNeverLinkToThemselves)
+{
+  PointMatrix p = randomPoints (50, 9);
+  PointMatrix dup (150, 3);
+  dup << p, p, p;  // every point three times
+  const PointGraph g = buildKnnGraph (dup);
+  for (std::size_t v = 0; v < g.numVertices (); ++v)
+    for (auto e = g.row_ptr[v]; e < g.row_ptr[v + 1]; ++e)
+    {
+      ASSERT_NE (g.col[e], v);
+      ASSERT_TRUE (std::isfinite (g.weight[e]));
+    }
+  // Each point sees its two copies at distance zero, with weight one.
+  const auto edges = edgesInCallerOrder (g);
+  EXPECT_EQ (edges.at ({0, 50}), 1.0f);
+  EXPECT_EQ (edges.at ({0, 100}), 1.0f);
+}
+
+TEST (KnnGraph, AllPointsIdentical)
+{
+  const PointMatrix p = PointMatrix::Constant (30, 3, 2.5f);
+  const PointGraph g = buildKnnGraph (p);
+  EXPECT_EQ (g.spacing, 0.0);
+  for (float w : g.weight)
+    EXPECT_EQ (w, 1.0f);
+}
+
+TEST (KnnGraph, RejectsInvalidInput)
+{
+  const PointMatrix p = randomPoints (20, 10);
+  KnnGraphParams bad_k;
+  bad_k.k = 0;
+  EXPECT_THROW (buildKnnGraph (p, bad_k), std::invalid_argument);
+  KnnGraphParams bad_sigma;
+  bad_sigma.sigma = -1.0;
+  EXPECT_THROW (buildKnnGraph (p, bad_sigma), std::invalid_argument);
+  bad_sigma.sigma = std::nan ("");
+  EXPECT_THROW (buildKnnGraph (p, bad_sigma), std::invalid_argument);
+  KnnGraphParams bad_threads;
+  bad_threads.num_threads = -2;
+  EXPECT_THROW (buildKnnGraph (p, bad_threads), std::invalid_argument);
+  PointMatrix nan_point = p;
+  nan_point (3, 1) = std::numeric_limits<float>::infinity ();
+  EXPECT_THROW (buildKnnGraph (nan_point), std::invalid_argument);
+  RadiusGraphParams bad_radius;
+  bad_radius.radius = -0.5;
+  EXPECT_THROW (buildRadiusGraph (p, bad_radius), std::invalid_argument);
+  RadiusGraphParams bad_factor;
+  bad_factor.radius_factor = 0.0;
+  EXPECT_THROW (buildRadiusGraph (p, bad_factor), std::invalid_argument);
+}
+
+TEST (RadiusGraph, MatchesBruteForce)
+{
+  const PointMatrix p = randomPoints (500, 11);
+  RadiusGraphParams params;
+  params.radius = 0.3;
+  params.sigma = 0.1;
+  double used = 0.0;
+  const PointGraph g = buildRadiusGraph (p, params, &used);
+  EXPECT_EQ (used, 0.3);
+  std::set<std::pair<int, int>> expected;
+  for (int i = 0; i < 500; ++i)
+    for (int j = 0; j < 500; ++j)
+      if (i != j && dist2 (p, i, j) < 0.09)
+        expected.insert ({i, j});
+  const auto edges = edgesInCallerOrder (g);
+  std::set<std::pair<int, int>> got;
+  for (const auto &e : edges)
+  {
+    got.insert (e.first);
+    EXPECT_NEAR (e.second, std::exp (-dist2 (p, e.first.first, e.first.second) / 0.02), 1e-6);
+  }
+  EXPECT_EQ (got, expected);
+}
+
+TEST (RadiusGraph, DefaultRadiusFollowsTheMedianSpacing)
+{
+  const PointMatrix p = randomPoints (2000, 12);
+  double used = 0.0;
+  const PointGraph g = buildRadiusGraph (p, {}, &used);
+  // Median over points of the mean 10-NN distance, by brute force.
+  const auto knn = bruteKnn (p, 10);
+  std::vector<double> mean;
+  for (int i = 0; i < 2000; ++i)
+  {
+    double s = 0.0;
+    for (int j : knn[i])
+      s += std::sqrt (dist2 (p, i, j));
+    mean.push_back (s / 10.0);
+  }
+  std::nth_element (mean.begin (), mean.begin () + 1000, mean.end ());
+  EXPECT_NEAR (g.spacing, mean[1000], 1e-6);
+  EXPECT_NEAR (used, 2.0 * mean[1000], 1e-6);
+  EXPECT_NEAR (g.sigma, mean[1000] / std::sqrt (2.0), 1e-6);
+  // Far outliers do not move a median: add 5% of points 100 units away.
+  PointMatrix with_outliers (2100, 3);
+  with_outliers << p, randomPoints (100, 13) .array () + 100.0f;
+  double used_outliers = 0.0;
+  buildRadiusGraph (with_outliers, {}, &used_outliers);
+  EXPECT_NEAR (used_outliers, used, 0.1 * used);
+}
+
+TEST (RadiusGraph, DegreesWithoutTheGraphMatchTheGraphsDegrees)
+{
+  const PointMatrix p = randomPoints (5000, 17);
+  RadiusGraphParams params;
+  params.num_threads = 1;
+  double radius = 0.0;
+  const PointGraph g = buildRadiusGraph (p, params, &radius);
+  const std::vector<double> by_vertex = weightedDegree (g);
+  const RadiusDegrees d = radiusGraphDegrees (p, params);
+  EXPECT_EQ (d.radius, radius);
+  EXPECT_EQ (d.sigma, g.sigma);
+  EXPECT_EQ (d.spacing, g.spacing);
+  ASSERT_EQ (d.degree.size (), 5000u);
+  for (std::size_t v = 0; v < 5000; ++v)
+    ASSERT_NEAR (d.degree[g.order[v]], by_vertex[v], 1e-9 * (1.0 + by_vertex[v]));
+  params.num_threads = 2;
+  EXPECT_EQ (radiusGraphDegrees (p, params).degree, d.degree);
+}
+
+class Operators : public ::testing::Test
+{
+protected:
+  const PointGraph g = buildKnnGraph (randomPoints (3000, 14));
+  const Signal3 x = randomSignal (3000, 15);
+};
+
+TEST_F (Operators, DegreeIsTheRowSum)
+{
+  const auto degree = weightedDegree (g);
+  const auto edges = edgesInCallerOrder (g);
+  std::vector<double> sums (3000, 0.0);
+  for (const auto &e : edges)
+    sums[e.first.first] += e.second;
+  for (std::size_t v = 0; v < 3000; ++v)
+    ASSERT_NEAR (degree[v], sums[g.order[v]], 1e-9);
+}
+
+TEST_F (Operators, LaplacianOfAConstantIsZero)
+{
+  Signal3 ones = Signal3::Ones (3000, 3), y;
+  applyLaplacian (g, ones, y);
+  EXPECT_LT (y.cwiseAbs ().maxCoeff (), 1e-12);
+}
+
+TEST_F (Operators, LaplacianMatchesDegreeMinusAdjacency)
+{
+  Signal3 y;
+  applyLaplacian (g, x, y);
+  const auto degree = weightedDegree (g);
+  for (std::size_t i = 0; i < 3000; ++i)
+  {
+    Eigen::RowVector3d expected = degree[i] * x.row (i);
+    for (auto e = g.row_ptr[i]; e < g.row_ptr[i + 1]; ++e)
+      expected -= double (g.weight[e]) * x.row (g.col[e]);
+    ASSERT_LT ((y.row (i) - expected).norm (), 1e-9);
+  }
+}
+
+TEST_F (Operators, GradientNormEqualsLaplacianQuadraticForm)
+{
+  Signal3 grad, lx;
+  applyGradient (g, x, grad);
+  EXPECT_EQ (static_cast<std::size_t> (grad.rows ()), g.numEdges ());
+  applyLaplacian (g, x, lx);
+  const double quadratic = (x.array () * lx.array ()).sum ();
+  EXPECT_NEAR (grad.squaredNorm (), quadratic, 1e-9 * quadratic);
+}
+
+TEST_F (Operators, GradientAdjointIsTheTranspose)
+{
+  Signal3 grad, back;
+  applyGradient (g, x, grad);
+  const Signal3 y = randomSignal (g.numEdges (), 16);
+  applyGradientAdjoint (g, y, back);
+  const double lhs = (grad.array () * y.array ()).sum ();
+  const double rhs = (x.array () * back.array ()).sum ();
+  EXPECT_NEAR (lhs, rhs, 1e-9 * std::abs (lhs));
+  // grad^T grad = L.
+  Signal3 gtg, lx;
+  applyGradientAdjoint (g, grad, gtg);
+  applyLaplacian (g, x, lx);
+  EXPECT_LT ((gtg - lx).cwiseAbs ().maxCoeff (), 1e-9);
+}
+
+TEST_F (Operators, ResultsDoNotDependOnThreadCount)
+{
+  Signal3 a, b, ga, gb;
+  applyLaplacian (g, x, a, 1);
+  applyLaplacian (g, x, b, 3);
+  EXPECT_TRUE (a == b);
+  applyGradient (g, x, ga, 1);
+  applyGradient (g, x, gb, 3);
+  EXPECT_TRUE (ga == gb);
+  EXPECT_EQ (weightedDegree (g, 1), weightedDegree (g, 4));
+}
+
+TEST_F (Operators, RejectSignalsOfTheWrongSize)
+{
+  Signal3 y;
+  EXPECT_THROW (applyLaplacian (g, Signal3::Zero (10, 3), y), std::invalid_argument);
+  EXPECT_THROW (applyGradientAdjoint (g, Signal3::Zero (10, 3), y), std::invalid_argument);
+}

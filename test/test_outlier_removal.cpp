@@ -1,0 +1,490 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ *
+ * GraphDegreeOutlierRemoval: the pcl::FilterIndices contract, over several point
+ * types, and bad input.
+ */
+#include <pcl_graph_denoise/graph_degree_outlier_removal.h>
+
+#include <pcl_graph_denoise/point_cloud_adaptor.h>
+
+#include "synthetic.h"
+#include "test_clouds.h"
+
+#include <gtest/gtest.h>
+
+#include <pcl/common/io.h>
+#include <pcl/filters/filter.h>
+
+#include <cstring>
+#include <limits>
+#include <set>
+
+using pcl_graph_denoise::GraphDegreeOutlierRemoval;
+using namespace pcl_graph_denoise::testing;
+
+namespace {
+
+/** A noisy sphere of 3000 points with 60 uniform outliers around it. */
+template <typename PointT>
+typename pcl::PointCloud<PointT>::Ptr
+sphereWithOutliers (std::vector<bool> *truth = nullptr)
+{
+  auto xyz = pcl_graph_denoise::synthetic::noisySphere (3000, 1.0, 0.005, 1);
+  std::vector<bool> outliers = pcl_graph_denoise::synthetic::addUniformOutliers (xyz, 0.02, 0.5, 2);
+  if (truth)
+    *truth = outliers;
+  return withFields<PointT> (xyz);
+}
+
+/** Distance of a point to the unit sphere the test clouds are sampled on. */
+template <typename PointT>
+float
+offSphere (const PointT &p)
+{
+  return std::abs (p.getVector3fMap ().norm () - 1.0f);
+}
+
+} // namespace
+
+template <typename PointT>
+class OutlierRemovalContract : public ::testing::Test
+{
+protected:
+  using Cloud = pcl::PointCloud<PointT>;
+  std::vector<bool> truth;  // declared first: initialised before the cloud
+  typename Cloud::Ptr cloud = sphereWithOutliers<PointT> (&truth);
+};
+
+using PointTypes = ::testing::Types<pcl::PointXYZ, pcl::PointXYZRGB, pcl::PointNormal>;
+TYPED_TEST_SUITE (OutlierRemovalContract, PointTypes);
+
+TYPED_TEST (OutlierRemovalContract, RemovesOutliersKeepsTheSurfaceWithDefaults)
+{
+  GraphDegreeOutlierRemoval<TypeParam> filter (true);
+  filter.setInputCloud (this->cloud);
+  pcl::Indices kept;
+  filter.filter (kept);
+  // Every outlier more than about 2.5 point spacings (0.2) off the surface goes; one
+  // landing closer has as many close neighbours as a surface point and cannot be told
+  // from one by its degree. The surface stays.
+  std::size_t kept_far_outliers = 0, kept_surface = 0;
+  for (auto i : kept)
+  {
+    if (!this->truth[i])
+      ++kept_surface;
+    else
+      kept_far_outliers += offSphere ((*this->cloud)[i]) > 0.2f;
+  }
+  EXPECT_EQ (kept_far_outliers, 0u);
+  EXPECT_GE (kept_surface, 2990u);
+  EXPECT_EQ (kept.size () + filter.getRemovedIndices ()->size (), this->cloud->size ());
+  EXPECT_GT (filter.getUsedRadius (), 0.0);
+  EXPECT_GT (filter.getUsedSigma (), 0.0);
+}
+
+TYPED_TEST (OutlierRemovalContract, OutputPointsAreCopiesWithEveryField)
+{
+  const auto before = deepCopy (*this->cloud);
+  GraphDegreeOutlierRemoval<TypeParam> filter;
+  filter.setInputCloud (this->cloud);
+  pcl::Indices kept;
+  filter.filter (kept);
+  pcl::PointCloud<TypeParam> out;
+  filter.filter (out);
+  ASSERT_EQ (out.size (), kept.size ());
+  for (std::size_t r = 0; r < kept.size (); ++r)
+    ASSERT_TRUE (samePoint (out[r], (*this->cloud)[kept[r]]));
+  EXPECT_TRUE (sameCloud (*this->cloud, before));  // input never modified
+  EXPECT_TRUE (out.is_dense);
+  EXPECT_EQ (out.header.frame_id, this->cloud->header.frame_id);
+}
+
+TYPED_TEST (OutlierRemovalContract, KeptIndicesKeepInputOrder)
+{
+  GraphDegreeOutlierRemoval<TypeParam> filter;
+  filter.setInputCloud (this->cloud);
+  pcl::Indices kept;
+  filter.filter (kept);
+  EXPECT_TRUE (std::is_sorted (kept.begin (), kept.end ()));
+}
+
+TYPED_TEST (OutlierRemovalContract, NegativeGivesTheComplement)
+{
+  GraphDegreeOutlierRemoval<TypeParam> filter (true);
+  filter.setInputCloud (this->cloud);
+  pcl::Indices kept, outliers;
+  filter.filter (kept);
+  const pcl::Indices removed = *filter.getRemovedIndices ();
+  filter.setNegative (true);
+  filter.filter (outliers);
+  EXPECT_EQ (outliers, removed);
+  EXPECT_EQ (*filter.getRemovedIndices (), kept);
+}
+
+TYPED_TEST (OutlierRemovalContract, HonoursIndices)
+{
+  // Only the upper half of the sphere and every other outlier.
+  auto indices = std::make_shared<pcl::Indices> ();
+  std::size_t surface = 0;
+  for (int i = 0; i < static_cast<int> (this->cloud->size ()); ++i)
+  {
+    const bool upper = !this->truth[i] && (*this->cloud)[i].z > 0.0f;
+    if (upper || (this->truth[i] && i % 2 == 0))
+      indices->push_back (i);
+    surface += upper;
+  }
+  GraphDegreeOutlierRemoval<TypeParam> filter (true);
+  filter.setInputCloud (this->cloud);
+  filter.setIndices (indices);
+  pcl::Indices kept;
+  filter.filter (kept);
+  std::set<int> allowed (indices->begin (), indices->end ());
+  for (auto i : kept)
+    ASSERT_TRUE (allowed.count (i));
+  std::set<int> all (kept.begin (), kept.end ());
+  for (auto i : *filter.getRemovedIndices ())
+  {
+    ASSERT_TRUE (allowed.count (i));
+    all.insert (i);
+  }
+  EXPECT_EQ (all, allowed);
+  std::size_t kept_far_outliers = 0;
+  for (auto i : kept)
+    kept_far_outliers += this->truth[i] && offSphere ((*this->cloud)[i]) > 0.2f;
+  EXPECT_EQ (kept_far_outliers, 0u);
+  EXPECT_GE (double (kept.size ()), 0.99 * double (surface));
+  // Points outside the indices play no part: the result equals filtering the subset.
+  typename pcl::PointCloud<TypeParam>::Ptr subset (new pcl::PointCloud<TypeParam>);
+  pcl::copyPointCloud (*this->cloud, *indices, *subset);
+  GraphDegreeOutlierRemoval<TypeParam> alone;
+  alone.setInputCloud (subset);
+  pcl::Indices kept_alone;
+  alone.filter (kept_alone);
+  ASSERT_EQ (kept_alone.size (), kept.size ());
+  for (std::size_t r = 0; r < kept.size (); ++r)
+    EXPECT_EQ ((*indices)[kept_alone[r]], kept[r]);
+}
+
+TYPED_TEST (OutlierRemovalContract, KeepOrganizedReplacesRemovedPoints)
+{
+  GraphDegreeOutlierRemoval<TypeParam> filter;
+  filter.setInputCloud (this->cloud);
+  pcl::Indices kept;
+  filter.filter (kept);
+  filter.setKeepOrganized (true);
+  filter.setUserFilterValue (-7.0f);
+  pcl::PointCloud<TypeParam> out;
+  filter.filter (out);
+  ASSERT_EQ (out.size (), this->cloud->size ());
+  std::set<int> keep (kept.begin (), kept.end ());
+  for (std::size_t i = 0; i < out.size (); ++i)
+  {
+    if (keep.count (static_cast<int> (i)))
+      ASSERT_TRUE (samePoint (out[i], (*this->cloud)[i]));
+    else
+      ASSERT_TRUE (out[i].x == -7.0f && out[i].y == -7.0f && out[i].z == -7.0f);
+  }
+  filter.setUserFilterValue (std::numeric_limits<float>::quiet_NaN ());
+  filter.filter (out);
+  EXPECT_FALSE (out.is_dense);
+}
+
+TYPED_TEST (OutlierRemovalContract, InPlaceEqualsOutOfPlace)
+{
+  GraphDegreeOutlierRemoval<TypeParam> filter;
+  filter.setInputCloud (this->cloud);
+  pcl::PointCloud<TypeParam> out;
+  filter.filter (out);
+  auto in_place = std::make_shared<pcl::PointCloud<TypeParam>> (deepCopy (*this->cloud));
+  filter.setInputCloud (in_place);
+  filter.filter (*in_place);
+  EXPECT_TRUE (sameCloud (*in_place, out));
+}
+
+TYPED_TEST (OutlierRemovalContract, NonFinitePointsAreRemovedAndIgnored)
+{
+  // Insert NaN and Inf points; the decisions on the finite points must not change.
+  auto holes = std::make_shared<pcl::PointCloud<TypeParam>> ();
+  pcl::Indices finite_position;
+  std::size_t inserted = 0;
+  for (std::size_t i = 0; i < this->cloud->size (); ++i)
+  {
+    if (i % 100 == 0)
+    {
+      TypeParam bad = (*this->cloud)[i];
+      bad.x = (i % 200 == 0) ? std::numeric_limits<float>::quiet_NaN ()
+                             : std::numeric_limits<float>::infinity ();
+      holes->push_back (bad);
+      ++inserted;
+    }
+    finite_position.push_back (static_cast<int> (holes->size ()));
+    holes->push_back ((*this->cloud)[i]);
+  }
+  GraphDegreeOutlierRemoval<TypeParam> clean, dirty (true);
+  clean.setInputCloud (this->cloud);
+  dirty.setInputCloud (holes);
+  pcl::Indices kept_clean, kept_dirty;
+  clean.filter (kept_clean);
+  dirty.filter (kept_dirty);
+  ASSERT_EQ (kept_clean.size (), kept_dirty.size ());
+  for (std::size_t r = 0; r < kept_clean.size (); ++r)
+    EXPECT_EQ (finite_position[kept_clean[r]], kept_dirty[r]);
+  // Non-finite points are removed in negative mode too, and reported as removed.
+  dirty.setNegative (true);
+  pcl::Indices outliers;
+  dirty.filter (outliers);
+  for (auto i : outliers)
+    EXPECT_TRUE (pcl_graph_denoise::isFinitePosition ((*holes)[i]));
+  std::size_t non_finite_removed = 0;
+  for (auto i : *dirty.getRemovedIndices ())
+    non_finite_removed += !pcl_graph_denoise::isFinitePosition ((*holes)[i]);
+  EXPECT_EQ (non_finite_removed, inserted);
+}
+
+TYPED_TEST (OutlierRemovalContract, ResultDoesNotDependOnThreadCount)
+{
+  GraphDegreeOutlierRemoval<TypeParam> filter;
+  filter.setInputCloud (this->cloud);
+  pcl::Indices one, two;
+  filter.setNumberOfThreads (1);
+  filter.filter (one);
+  filter.setNumberOfThreads (2);
+  filter.filter (two);
+  EXPECT_EQ (one, two);
+}
+
+TEST (OutlierRemoval, AbsoluteThresholdIsApplied)
+{
+  auto cloud = sphereWithOutliers<pcl::PointXYZ> ();
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter;
+  filter.setInputCloud (cloud);
+  pcl::Indices automatic, strict, none;
+  filter.filter (automatic);
+  const double tau = filter.getUsedDegreeThreshold ();
+  EXPECT_GT (tau, 0.0);
+  filter.setDegreeThreshold (0.0);  // nothing has a degree below zero
+  EXPECT_EQ (filter.getThresholdRule (), filter.ABSOLUTE_THRESHOLD);
+  filter.filter (none);
+  EXPECT_EQ (none.size (), cloud->size ());
+  filter.setDegreeThreshold (1e9);  // everything is below
+  filter.filter (strict);
+  EXPECT_TRUE (strict.empty ());
+  filter.setDegreeThreshold (tau);
+  pcl::Indices same;
+  filter.filter (same);
+  EXPECT_EQ (same, automatic);
+}
+
+TEST (OutlierRemoval, OutlierFractionRemovesThatManyLowestDegreePoints)
+{
+  std::vector<bool> truth;
+  auto cloud = sphereWithOutliers<pcl::PointXYZ> (&truth);
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter (true);
+  filter.setInputCloud (cloud);
+  filter.setOutlierFraction (0.10);
+  pcl::Indices kept;
+  filter.filter (kept);
+  const auto n = cloud->size ();
+  EXPECT_EQ (filter.getRemovedIndices ()->size (), static_cast<std::size_t> (std::llround (0.1 * n)));
+  // The 60 true outliers have the lowest degrees, so all are among the removed.
+  std::size_t removed_outliers = 0;
+  for (auto i : *filter.getRemovedIndices ())
+    removed_outliers += truth[i];
+  EXPECT_EQ (removed_outliers, 60u);
+  filter.setOutlierFraction (0.0);
+  filter.filter (kept);
+  EXPECT_EQ (kept.size (), n);
+  filter.setOutlierFraction (1.0);
+  filter.filter (kept);
+  EXPECT_TRUE (kept.empty ());
+}
+
+TEST (OutlierRemoval, UnitInvariantDefaults)
+{
+  auto metres = sphereWithOutliers<pcl::PointXYZ> ();
+  auto millimetres = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> (*metres);
+  for (auto &p : *millimetres)
+    p.getVector3fMap () *= 1000.0f;
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter;
+  pcl::Indices a, b;
+  filter.setInputCloud (metres);
+  filter.filter (a);
+  const double radius = filter.getUsedRadius ();
+  filter.setInputCloud (millimetres);
+  filter.filter (b);
+  EXPECT_EQ (a, b);
+  EXPECT_NEAR (filter.getUsedRadius (), 1000.0 * radius, 1e-3 * filter.getUsedRadius ());
+}
+
+TEST (OutlierRemoval, ExplicitRadiusAndSigmaAreUsed)
+{
+  auto cloud = sphereWithOutliers<pcl::PointXYZ> ();
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter;
+  filter.setInputCloud (cloud);
+  filter.setRadiusSearch (0.2);
+  filter.setSigma (0.05);
+  pcl::Indices kept;
+  filter.filter (kept);
+  EXPECT_EQ (filter.getUsedRadius (), 0.2);
+  EXPECT_EQ (filter.getUsedSigma (), 0.05);
+  EXPECT_EQ (filter.getRadiusSearch (), 0.2);
+  EXPECT_EQ (filter.getSigma (), 0.05);
+}
+
+TEST (OutlierRemoval, WorksThroughAFilterPointer)
+{
+  auto cloud = sphereWithOutliers<pcl::PointXYZ> ();
+  pcl::Filter<pcl::PointXYZ>::Ptr filter (new GraphDegreeOutlierRemoval<pcl::PointXYZ>);
+  filter->setInputCloud (cloud);
+  pcl::PointCloud<pcl::PointXYZ> out;
+  filter->filter (out);
+  EXPECT_GE (out.size (), 2990u);
+  EXPECT_LE (out.size (), 3002u);
+}
+
+// ---- Bad input ---------------------------------------------------------------------
+
+namespace {
+
+/** Runs the filter on `cloud`, capturing what it printed on stderr. */
+std::string
+runCapturing (GraphDegreeOutlierRemoval<pcl::PointXYZ> &filter,
+              const pcl::PointCloud<pcl::PointXYZ>::Ptr &cloud, pcl::Indices &kept)
+{
+  filter.setInputCloud (cloud);
+  ::testing::internal::CaptureStderr ();
+  filter.filter (kept);
+  return ::testing::internal::GetCapturedStderr ();
+}
+
+} // namespace
+
+TEST (OutlierRemovalBadInput, EmptyCloud)
+{
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter (true);
+  pcl::Indices kept{1, 2};
+  const std::string err = runCapturing (filter, cloud, kept);
+  EXPECT_TRUE (kept.empty ());
+  EXPECT_NE (err.find ("GraphDegreeOutlierRemoval"), std::string::npos) << err;
+  pcl::PointCloud<pcl::PointXYZ> out;
+  filter.filter (out);
+  EXPECT_TRUE (out.empty ());
+}
+
+TEST (OutlierRemovalBadInput, AllNaNCloud)
+{
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  for (int i = 0; i < 10; ++i)
+    cloud->push_back (pcl::PointXYZ (std::numeric_limits<float>::quiet_NaN (), 0.0f, 0.0f));
+  const auto before = deepCopy (*cloud);
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter (true);
+  pcl::Indices kept;
+  const std::string err = runCapturing (filter, cloud, kept);
+  EXPECT_TRUE (kept.empty ());
+  EXPECT_EQ (filter.getRemovedIndices ()->size (), 10u);
+  EXPECT_NE (err.find ("no finite point"), std::string::npos) << err;
+  EXPECT_TRUE (sameCloud (*cloud, before));
+}
+
+TEST (OutlierRemovalBadInput, OnePointAndTwoPoints)
+{
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  cloud->push_back (pcl::PointXYZ (1.0f, 2.0f, 3.0f));
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter;
+  pcl::Indices kept;
+  filter.setInputCloud (cloud);
+  filter.filter (kept);
+  EXPECT_EQ (kept, pcl::Indices{0});  // nothing to compare it with: kept
+  cloud->push_back (pcl::PointXYZ (1.0f, 2.0f, 4.0f));
+  filter.filter (kept);
+  EXPECT_EQ (kept, (pcl::Indices{0, 1}));
+}
+
+TEST (OutlierRemovalBadInput, FewerPointsThanNeighboursAndDuplicates)
+{
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  for (int i = 0; i < 4; ++i)
+    cloud->push_back (pcl::PointXYZ (0.1f * i, 0.0f, 0.0f));
+  for (int i = 0; i < 4; ++i)  // every point twice
+    cloud->push_back ((*cloud)[i]);
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter;
+  pcl::Indices kept;
+  filter.setInputCloud (cloud);
+  filter.filter (kept);
+  EXPECT_EQ (kept.size (), 8u);
+  // All points identical: zero spacing, nothing to single out, nothing removed.
+  auto same = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  same->resize (50, pcl::PointXYZ (4.0f, 5.0f, 6.0f));
+  filter.setInputCloud (same);
+  filter.filter (kept);
+  EXPECT_EQ (kept.size (), 50u);
+}
+
+TEST (OutlierRemovalBadInput, InvalidParametersAreNamed)
+{
+  auto cloud = sphereWithOutliers<pcl::PointXYZ> ();
+  const auto before = deepCopy (*cloud);
+  struct Case
+  {
+    std::function<void (GraphDegreeOutlierRemoval<pcl::PointXYZ> &)> set;
+    std::string parameter;
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN ();
+  const double inf = std::numeric_limits<double>::infinity ();
+  const std::vector<Case> cases = {
+      {[] (auto &f) { f.setRadiusSearch (-1.0); }, "radius"},
+      {[&] (auto &f) { f.setRadiusSearch (nan); }, "radius"},
+      {[&] (auto &f) { f.setRadiusSearch (inf); }, "radius"},
+      {[] (auto &f) { f.setSigma (-0.1); }, "sigma"},
+      {[&] (auto &f) { f.setSigma (nan); }, "sigma"},
+      {[] (auto &f) { f.setDegreeThreshold (-1.0); }, "degree threshold"},
+      {[&] (auto &f) { f.setDegreeThreshold (nan); }, "degree threshold"},
+      {[] (auto &f) { f.setOutlierFraction (1.5); }, "outlier fraction"},
+      {[&] (auto &f) { f.setOutlierFraction (nan); }, "outlier fraction"},
+      {[] (auto &f) { f.setAutomaticThresholdRatio (-2.0); }, "threshold ratio"},
+      {[] (auto &f) { f.setNumberOfThreads (-1); }, "number of threads"},
+  };
+  for (const auto &c : cases)
+  {
+    GraphDegreeOutlierRemoval<pcl::PointXYZ> filter (true);
+    c.set (filter);
+    pcl::Indices kept{5};
+    const std::string err = runCapturing (filter, cloud, kept);
+    EXPECT_TRUE (kept.empty ()) << c.parameter;
+    EXPECT_TRUE (filter.getRemovedIndices ()->empty ()) << c.parameter;
+    EXPECT_NE (err.find ("GraphDegreeOutlierRemoval"), std::string::npos) << err;
+    EXPECT_NE (err.find (c.parameter), std::string::npos) << err;
+    pcl::PointCloud<pcl::PointXYZ> out;
+    filter.filter (out);
+    EXPECT_TRUE (out.empty ());
+  }
+  EXPECT_TRUE (sameCloud (*cloud, before));
+}
+
+TEST (OutlierRemovalBadInput, IndicesOutOfRangeOrRepeated)
+{
+  auto cloud = sphereWithOutliers<pcl::PointXYZ> ();
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter;
+  filter.setIndices (std::make_shared<pcl::Indices> (pcl::Indices{0, 1, 100000}));
+  pcl::Indices kept{3};
+  std::string err = runCapturing (filter, cloud, kept);
+  EXPECT_TRUE (kept.empty ());
+  EXPECT_NE (err.find ("out of range"), std::string::npos) << err;
+  filter.setIndices (std::make_shared<pcl::Indices> (pcl::Indices{0, -1}));
+  err = runCapturing (filter, cloud, kept);
+  EXPECT_TRUE (kept.empty ());
+
+  // Repeated indices are used once, at their first place, with a warning.
+  auto indices = std::make_shared<pcl::Indices> ();
+  for (int i = 0; i < 3000; ++i)
+    indices->push_back (i);
+  indices->push_back (10);
+  filter.setIndices (indices);
+  err = runCapturing (filter, cloud, kept);
+  EXPECT_EQ (kept.size (), std::set<int> (kept.begin (), kept.end ()).size ());
+  EXPECT_GE (kept.size (), 2990u);
+  EXPECT_NE (err.find ("repeated"), std::string::npos) << err;
+}
