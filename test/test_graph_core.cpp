@@ -267,6 +267,9 @@ TEST (KnnGraph, RejectsInvalidInput)
   RadiusGraphParams bad_factor;
   bad_factor.radius_factor = 0.0;
   EXPECT_THROW (buildRadiusGraph (p, bad_factor), std::invalid_argument);
+  RadiusGraphParams bad_sigma_factor;
+  bad_sigma_factor.sigma_factor = -1.0;
+  EXPECT_THROW (radiusGraphDegrees (p, bad_sigma_factor), std::invalid_argument);
 }
 
 TEST (RadiusGraph, MatchesBruteForce)
@@ -312,6 +315,13 @@ TEST (RadiusGraph, DefaultRadiusFollowsTheMedianSpacing)
   EXPECT_NEAR (g.spacing, mean[1000], 1e-6);
   EXPECT_NEAR (used, 2.0 * mean[1000], 1e-6);
   EXPECT_NEAR (g.sigma, mean[1000] / std::sqrt (2.0), 1e-6);
+  RadiusGraphParams scaled;
+  scaled.radius_factor = 3.0;
+  scaled.sigma_factor = 1.0;
+  double used_scaled = 0.0;
+  const PointGraph h = buildRadiusGraph (p, scaled, &used_scaled);
+  EXPECT_NEAR (used_scaled, 3.0 * mean[1000], 1e-6);
+  EXPECT_NEAR (h.sigma, mean[1000], 1e-6);
   // Far outliers do not move a median: add 5% of points 100 units away.
   PointMatrix with_outliers (2100, 3);
   with_outliers << p, randomPoints (100, 13) .array () + 100.0f;

@@ -9,6 +9,7 @@
 #include "spatial_order.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -76,18 +77,33 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
 {
   const std::size_t n = static_cast<std::size_t> (points.rows ());
 
-  // Transpose by counting; filling in increasing source order keeps rows sorted.
+  // Transpose by counting, on all threads: atomic counters and cursors; the order in
+  // which a row is filled depends on scheduling, so each row is sorted afterwards.
+  std::vector<std::atomic<std::uint32_t>> cursor (n);
+  detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      cursor[i].store (0, std::memory_order_relaxed);
+  });
+  detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
+    for (std::uint64_t e = directed.ptr[begin]; e < directed.ptr[end]; ++e)
+      cursor[directed.idx[e]].fetch_add (1, std::memory_order_relaxed);
+  });
   std::vector<std::uint64_t> tptr (n + 1, 0);
-  for (const VertexIndex j : directed.idx)
-    ++tptr[j + 1];
-  std::partial_sum (tptr.begin (), tptr.end (), tptr.begin ());
-  std::vector<VertexIndex> tidx (directed.idx.size ());
+  for (std::size_t j = 0; j < n; ++j)
   {
-    std::vector<std::uint64_t> fill (tptr.begin (), tptr.end () - 1);
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::uint64_t e = directed.ptr[i]; e < directed.ptr[i + 1]; ++e)
-        tidx[fill[directed.idx[e]]++] = static_cast<VertexIndex> (i);
+    tptr[j + 1] = tptr[j] + cursor[j].load (std::memory_order_relaxed);
+    cursor[j].store (0, std::memory_order_relaxed);
   }
+  std::vector<VertexIndex> tidx (directed.idx.size ());
+  detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      for (std::uint64_t e = directed.ptr[i]; e < directed.ptr[i + 1]; ++e)
+      {
+        const VertexIndex j = directed.idx[e];
+        tidx[tptr[j] + cursor[j].fetch_add (1, std::memory_order_relaxed)] =
+            static_cast<VertexIndex> (i);
+      }
+  });
 
   // Sort out-going rows, then count the size of each merged row.
   std::vector<std::uint64_t> row_size (n + 1, 0);
@@ -101,6 +117,7 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
           std::sort (first, last);
           auto tfirst = tidx.begin () + tptr[i];
           auto tlast = tidx.begin () + tptr[i + 1];
+          std::sort (tfirst, tlast);
           std::uint64_t count = 0;
           while (first != last || tfirst != tlast)
           {
@@ -187,9 +204,9 @@ meanKnnDistances (const detail::KdTree &tree, std::size_t n, int k, int num_thre
 
 /** Reorders the points along the Morton curve and records the order in `graph`. */
 PointMatrix
-orderVertices (const PointMatrix &points, PointGraph &graph)
+orderVertices (const PointMatrix &points, int num_threads, PointGraph &graph)
 {
-  graph.order = detail::mortonOrder (points);
+  graph.order = detail::mortonOrder (points, num_threads);
   return detail::reorderPoints (points, graph.order);
 }
 
@@ -223,7 +240,7 @@ buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params)
   validatePoints (points);
 
   PointGraph graph;
-  const PointMatrix ordered = orderVertices (points, graph);
+  const PointMatrix ordered = orderVertices (points, params.num_threads, graph);
   const std::size_t n = graph.order.size ();
   graph.row_ptr.assign (n + 1, 0);
   if (n < 2)
@@ -258,12 +275,14 @@ prepareRadiusSearch (const PointMatrix &points, const RadiusGraphParams &params)
   validateLength (params.sigma, "sigma");
   requireValid (std::isfinite (params.radius_factor) && params.radius_factor > 0.0,
                 "radius_factor must be finite and > 0");
+  requireValid (std::isfinite (params.sigma_factor) && params.sigma_factor > 0.0,
+                "sigma_factor must be finite and > 0");
   requireValid (params.spacing_k >= 1, "spacing_k must be >= 1");
   validateThreads (params.num_threads);
   validatePoints (points);
 
   RadiusSearch search;
-  search.ordered = orderVertices (points, search.graph);
+  search.ordered = orderVertices (points, params.num_threads, search.graph);
   const std::size_t n = search.graph.order.size ();
   search.graph.row_ptr.assign (n + 1, 0);
   search.radius = params.radius;
@@ -274,7 +293,8 @@ prepareRadiusSearch (const PointMatrix &points, const RadiusGraphParams &params)
   std::vector<double> mean = meanKnnDistances (*search.tree, n, k, params.num_threads, nullptr);
   std::nth_element (mean.begin (), mean.begin () + n / 2, mean.end ());
   search.graph.spacing = mean[n / 2];
-  search.graph.sigma = params.sigma > 0.0 ? params.sigma : search.graph.spacing / std::sqrt (2.0);
+  search.graph.sigma =
+      params.sigma > 0.0 ? params.sigma : params.sigma_factor * search.graph.spacing;
   if (params.radius == 0.0)
     search.radius = params.radius_factor * search.graph.spacing;
   return search;

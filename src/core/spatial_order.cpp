@@ -4,6 +4,8 @@
  */
 #include "spatial_order.h"
 
+#include "parallel.h"
+
 #include <algorithm>
 #include <utility>
 
@@ -29,7 +31,7 @@ spreadBits (std::uint64_t v)
 } // namespace
 
 std::vector<VertexIndex>
-mortonOrder (const PointMatrix &points)
+mortonOrder (const PointMatrix &points, int num_threads)
 {
   const auto n = static_cast<std::size_t> (points.rows ());
   std::vector<VertexIndex> order (n);
@@ -40,23 +42,49 @@ mortonOrder (const PointMatrix &points)
   const Eigen::Vector3f hi = points.colwise ().maxCoeff ();
   const double extent = std::max ({double (hi.x ()) - lo.x (), double (hi.y ()) - lo.y (),
                                    double (hi.z ()) - lo.z ()});
-  const double cells = double ((1u << 21) - 1);
+  // One 64-bit key per point: the Morton code above the point's index, so that only
+  // the code bits need sorting (ties keep the input order) and items stay 8 bytes.
+  int index_bits = 1;
+  while (index_bits < 64 && (std::uint64_t (1) << index_bits) < n)
+    ++index_bits;
+  const int axis_bits = std::min (21, (64 - index_bits) / 3);
+  const double cells = double ((std::uint64_t (1) << axis_bits) - 1);
   const double scale = extent > 0.0 ? cells / extent : 0.0;
 
-  std::vector<std::pair<std::uint64_t, VertexIndex>> keyed (n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    std::uint64_t code = 0;
-    for (int d = 0; d < 3; ++d)
+  std::vector<std::uint64_t> keys (n), buffer (n);
+  parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
     {
-      const double cell = std::min (cells, (double (points (i, d)) - lo (d)) * scale);
-      code |= spreadBits (static_cast<std::uint64_t> (cell)) << d;
+      std::uint64_t code = 0;
+      for (int d = 0; d < 3; ++d)
+      {
+        const double cell = std::min (cells, (double (points (i, d)) - lo (d)) * scale);
+        code |= spreadBits (static_cast<std::uint64_t> (cell)) << d;
+      }
+      keys[i] = (code << index_bits) | i;
     }
-    keyed[i] = {code, static_cast<VertexIndex> (i)};
+  });
+  // Stable LSD radix sort on the code bits, 11 bits a pass.
+  constexpr int kBits = 11;
+  constexpr std::size_t kBuckets = std::size_t (1) << kBits;
+  const int top = index_bits + 3 * axis_bits;
+  std::vector<std::size_t> start (kBuckets + 1);
+  for (int shift = index_bits; shift < top; shift += kBits)
+  {
+    std::fill (start.begin (), start.end (), 0);
+    for (const std::uint64_t key : keys)
+      ++start[((key >> shift) & (kBuckets - 1)) + 1];
+    if (start[1] == n)  // every key has this digit zero: nothing moves
+      continue;
+    for (std::size_t b = 0; b < kBuckets; ++b)
+      start[b + 1] += start[b];
+    for (const std::uint64_t key : keys)
+      buffer[start[(key >> shift) & (kBuckets - 1)]++] = key;
+    keys.swap (buffer);
   }
-  std::sort (keyed.begin (), keyed.end ());
+  const std::uint64_t index_mask = (std::uint64_t (1) << index_bits) - 1;
   for (std::size_t v = 0; v < n; ++v)
-    order[v] = keyed[v].second;
+    order[v] = static_cast<VertexIndex> (keys[v] & index_mask);
   return order;
 }
 

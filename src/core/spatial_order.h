@@ -13,9 +13,10 @@ namespace core {
 namespace detail {
 
 /** Permutation that sorts the points along a Morton (Z-order) curve over their
- *  bounding box, 21 bits per axis; ties keep the input order. order[v] = input row. */
+ *  bounding box, up to 21 bits per axis; ties keep the input order. order[v] = input row.
+ *  The result does not depend on the number of threads. */
 std::vector<VertexIndex>
-mortonOrder (const PointMatrix &points);
+mortonOrder (const PointMatrix &points, int num_threads);
 
 /** Rows of `points` taken in `order`. */
 PointMatrix

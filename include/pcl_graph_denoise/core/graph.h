@@ -97,10 +97,13 @@ struct RadiusGraphParams
    *  their mean distance to their `spacing_k` nearest neighbours (the median keeps
    *  far outliers from inflating it). Valid: >= 0, finite. */
   double radius = 0.0;
-  /** Kernel width theta; 0 (default) = spacing / sqrt(2), as for the k-NN graph. */
+  /** Kernel width theta; 0 (default) = sigma_factor * spacing. Valid: >= 0, finite. */
   double sigma = 0.0;
   /** Multiple of the spacing used for the default radius. Valid: > 0, finite. */
   double radius_factor = 2.0;
+  /** Multiple of the spacing used for the default theta; the default 1/sqrt(2) is the
+   *  k-NN graph's (GSPBox's) convention. Valid: > 0, finite. */
+  double sigma_factor = 0.70710678118654752;
   /** Neighbours used to estimate the spacing. Valid: >= 1. */
   int spacing_k = 10;
   /** Worker threads; 0 = all hardware threads. The result does not depend on it. */

@@ -73,6 +73,8 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
     core::RadiusGraphParams params;
     params.radius = radius_;
     params.sigma = sigma_;
+    params.radius_factor = kRadiusFactor;
+    params.sigma_factor = kSigmaFactor;
     params.num_threads = num_threads_;
     core::RadiusDegrees result = core::radiusGraphDegrees (gathered.xyz, params);
     used_radius_ = result.radius;
@@ -104,14 +106,15 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
     used_threshold_ = degree_threshold_;
     if (rule_ == AUTOMATIC_THRESHOLD)
     {
+      // The first quartile: inliers' typical degree even with up to 25% outliers.
       std::vector<double> sorted = degree;
-      double median = 0.0;
+      double quartile = 0.0;
       if (!sorted.empty ())
       {
-        std::nth_element (sorted.begin (), sorted.begin () + count / 2, sorted.end ());
-        median = sorted[count / 2];
+        std::nth_element (sorted.begin (), sorted.begin () + count / 4, sorted.end ());
+        quartile = sorted[count / 4];
       }
-      used_threshold_ = automatic_ratio_ * median;
+      used_threshold_ = automatic_ratio_ * quartile;
     }
     for (std::size_t r = 0; r < count; ++r)
       inlier[r] = degree[r] >= used_threshold_;
