@@ -74,6 +74,28 @@ parallelFor (std::size_t n, int num_threads, Body &&body, std::size_t block = 40
     std::rethrow_exception (error);
 }
 
+/** Deterministic parallel reduction: body(begin, end) returns a partial value for a
+ *  block; the partials of fixed blocks are added in block order, so the sum does not
+ *  depend on the number of threads. T needs T{} as zero and operator+=. */
+template <typename T, typename Body>
+T
+parallelSum (std::size_t n, int num_threads, Body &&body, std::size_t block = 4096)
+{
+  const std::size_t num_blocks = (n + block - 1) / block;
+  std::vector<T> partial (num_blocks, T{});
+  parallelFor (
+      num_blocks, num_threads,
+      [&] (std::size_t first, std::size_t last) {
+        for (std::size_t b = first; b < last; ++b)
+          partial[b] = body (b * block, std::min (n, (b + 1) * block));
+      },
+      1);
+  T sum{};
+  for (const T &p : partial)
+    sum += p;
+  return sum;
+}
+
 } // namespace detail
 } // namespace core
 } // namespace pcl_graph_denoise

@@ -1,0 +1,105 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+/** \file solvers.h
+ *  \brief The paper's two position denoisers on a PointGraph, for N x 3 signals:
+ *
+ *  - Tikhonov: x = argmin 1/2 |x - f|^2 + gamma x^T L x, i.e. (I + 2 gamma L) x = f
+ *    (spectral filter 1 / (1 + 2 gamma lambda), GSPBox's convention);
+ *  - total variation: x = argmin 1/2 |x - f|^2 + gamma sum_e |(grad x)_e|, with
+ *    (grad x)_e = sqrt(w_ij) (x_i - x_j) over each edge once; isotropic (the Euclidean
+ *    norm of the 3-vector difference, rotation invariant) or anisotropic (the sum of
+ *    the three absolute differences).
+ *
+ *  Signals are in the graph's internal vertex order. Solvers never throw on
+ *  non-convergence: they return their best iterate and say so in the report.
+ */
+
+#include <pcl_graph_denoise/core/graph.h>
+
+#include <string>
+
+namespace pcl_graph_denoise {
+namespace core {
+
+/** \brief What a solver did. */
+struct SolverReport
+{
+  int iterations = 0;       ///< iterations run
+  double residual = 0.0;    ///< final stopping measure (see each solver)
+  bool converged = false;   ///< the stopping measure reached the tolerance
+};
+
+/** \brief Solvers for the Tikhonov system (I + 2 gamma L) x = f. */
+enum class TikhonovSolver
+{
+  CONJUGATE_GRADIENT,  ///< Jacobi-preconditioned CG, three columns fused (default)
+  CHOLMOD              ///< exact sparse Cholesky (SuiteSparse); for small and medium clouds
+};
+
+struct TikhonovParams
+{
+  TikhonovSolver solver = TikhonovSolver::CONJUGATE_GRADIENT;
+  /** CG stops when |r| <= tolerance |f - mean(f)| (Frobenius norms over the three
+   *  columns; the mean, which the filter leaves unchanged, does not count). */
+  double tolerance = 1e-6;
+  int max_iterations = 1000;  ///< CG iteration cap
+  int num_threads = 0;        ///< 0 = all hardware threads
+};
+
+/** \brief Solves (I + 2 gamma L) x = f for the three columns of f.
+ *  \throws std::invalid_argument on invalid parameters or sizes. */
+Signal3
+solveTikhonov (const PointGraph &graph, const Signal3 &f, double gamma,
+               const TikhonovParams &params = {}, SolverReport *report = nullptr);
+
+/** \brief Which norm of the edge differences total variation penalises. */
+enum class TotalVariationNorm
+{
+  ISOTROPIC,   ///< Euclidean norm of each edge's 3-vector difference (default)
+  ANISOTROPIC  ///< sum of the absolute differences of x, y and z
+};
+
+struct TotalVariationParams
+{
+  TotalVariationNorm norm = TotalVariationNorm::ISOTROPIC;
+  /** Stops when the primal-dual gap is at most tolerance x the primal objective. */
+  double tolerance = 1e-4;
+  int max_iterations = 500;
+  int num_threads = 0;  ///< 0 = all hardware threads
+};
+
+/** \brief Total-variation denoising by the accelerated primal-dual algorithm of
+ *  Chambolle and Pock (2011, algorithm 2; the data term is 1-strongly convex), which
+ *  needs no inner linear solve. The reported residual is the relative duality gap.
+ *  \throws std::invalid_argument on invalid parameters or sizes. */
+Signal3
+solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
+                     const TotalVariationParams &params = {}, SolverReport *report = nullptr);
+
+/** \brief The total-variation objective 1/2 |x - f|^2 + gamma TV(x). */
+double
+totalVariationObjective (const PointGraph &graph, const Signal3 &f, const Signal3 &x,
+                         double gamma, TotalVariationNorm norm);
+
+/** \brief The data-derived Tikhonov strength for a graph and a noise level (in the
+ *  points' units): gamma = 20 (noise / spacing)^1.5 / mean weighted degree. The best
+ *  gamma grows with the noise and with the density (gamma x mean degree from about 10
+ *  at 100k points to 100 at 1M points on a noisy sphere); the noise-to-spacing ratio
+ *  carries both. Calibrated on noisy spheres and cubes (see docs/defaults.md). Unitless;
+ *  0 when the graph has no edges or the noise is 0. */
+double
+defaultTikhonovGamma (const PointGraph &graph, double noise);
+
+/** \brief The data-derived total-variation strength: gamma = 10 noise / mean_i sum_j
+ *  sqrt(w_ij), a length in the points' units (each edge's dual is bounded by gamma, so
+ *  a point moves by at most gamma sum_j sqrt(w_ij) per unit of the data term).
+ *  Calibrated as defaultTikhonovGamma. 0 when the graph has no edges or no noise. */
+double
+defaultTotalVariationGamma (const PointGraph &graph, double noise);
+
+} // namespace core
+} // namespace pcl_graph_denoise

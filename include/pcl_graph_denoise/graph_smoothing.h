@@ -1,0 +1,156 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl_graph_denoise/core/graph.h>
+#include <pcl_graph_denoise/core/solvers.h>
+
+#include <pcl/filters/filter.h>
+
+namespace pcl_graph_denoise {
+
+/** \brief What the graph smoothing filters share: the k-NN graph of the points, the
+ *  data-derived strength, re-graphing, and the PCL contract of a smoother.
+ *
+ * Output follows PCL's smoothing filters (Bilateral, Median): it starts as a copy of
+ * the input, and only x, y, z of the finite points named by the indices are rewritten
+ * (each moved by its computed displacement); size, organisation and every other field
+ * are kept, non-finite points pass through unchanged, a point with no neighbour does
+ * not move and gamma = 0 is the identity. Invalid parameters or indices print a
+ * PCL_ERROR naming the class and the parameter and leave an empty output; a solver
+ * that stops before its tolerance prints a PCL_WARN with the residual reached and
+ * keeps its best iterate. Nothing throws out of filter().
+ *
+ * Subclasses provide the solver (GraphTikhonovSmoothing, GraphTVSmoothing).
+ */
+template <typename PointT>
+class GraphSmoothing : public pcl::Filter<PointT>
+{
+protected:
+  using PointCloud = typename pcl::Filter<PointT>::PointCloud;
+  using pcl::Filter<PointT>::filter_name_;
+  using pcl::Filter<PointT>::getClassName;
+  using pcl::Filter<PointT>::indices_;
+  using pcl::Filter<PointT>::input_;
+
+public:
+  using Ptr = std::shared_ptr<GraphSmoothing<PointT>>;
+  using ConstPtr = std::shared_ptr<const GraphSmoothing<PointT>>;
+
+  /** \brief Number of nearest neighbours of each point in the graph (the graph links i
+   *  and j when either is among the other's k nearest). Default 10. Valid: >= 1; with
+   *  fewer than k + 1 points, every point links to all others. */
+  inline void
+  setKSearch (int k) { k_ = k; }
+
+  /** \brief The number of neighbours set. */
+  inline int
+  getKSearch () const { return k_; }
+
+  /** \brief Kernel width theta of the weights exp(-d^2 / (2 theta^2)), in the cloud's
+   *  units. Default 0 = derived from the data: mean k-NN distance / sqrt(2).
+   *  Valid: >= 0. */
+  inline void
+  setSigma (double theta) { sigma_ = theta; }
+
+  /** \brief The kernel width set (0 = derived from the data). */
+  inline double
+  getSigma () const { return sigma_; }
+
+  /** \brief Smoothing strength gamma (see the subclass for its unit). Setting it turns
+   *  off the data-derived default; 0 leaves the cloud unchanged. Valid: >= 0. */
+  inline void
+  setGamma (double gamma)
+  {
+    gamma_ = gamma;
+    automatic_gamma_ = false;
+  }
+
+  /** \brief The gamma set (meaningful when getAutomaticGamma() is false). */
+  inline double
+  getGamma () const { return gamma_; }
+
+  /** \brief Derive gamma from the data at each filter() call (the default): from the
+   *  estimated noise level, the point spacing and the graph's degrees. */
+  inline void
+  setAutomaticGamma () { automatic_gamma_ = true; }
+
+  /** \brief True when gamma is derived from the data. */
+  inline bool
+  getAutomaticGamma () const { return automatic_gamma_; }
+
+  /** \brief Number of passes: each pass rebuilds the graph on the previous pass's output
+   *  and denoises it again (the paper's re-graphing). Default 1. Valid: >= 1. */
+  inline void
+  setGraphIterations (int n) { graph_iterations_ = n; }
+
+  /** \brief The number of passes set. */
+  inline int
+  getGraphIterations () const { return graph_iterations_; }
+
+  /** \brief Worker threads; 0 (default) = all hardware threads. The result does not
+   *  depend on it. Valid: >= 0. */
+  inline void
+  setNumberOfThreads (int num_threads) { num_threads_ = num_threads; }
+
+  /** \brief The number of threads set. */
+  inline int
+  getNumberOfThreads () const { return num_threads_; }
+
+  /** \brief Gamma used by the last pass of the last filter() call. */
+  inline double
+  getUsedGamma () const { return used_gamma_; }
+
+  /** \brief Theta used by the last pass of the last filter() call. */
+  inline double
+  getUsedSigma () const { return used_sigma_; }
+
+  /** \brief Noise level (standard deviation along the normal, cloud units) estimated
+   *  by the first pass of the last filter() call. */
+  inline double
+  getEstimatedNoise () const { return estimated_noise_; }
+
+  /** \brief What the solver of the last pass reported. */
+  inline const core::SolverReport &
+  getSolverReport () const { return report_; }
+
+protected:
+  GraphSmoothing () = default;
+
+  void
+  applyFilter (PointCloud &output) override;
+
+  /** \brief The subclass's own parameter checks: an empty string, or the name of the
+   *  invalid parameter and what it must be. */
+  virtual std::string
+  checkSolverParameters () const = 0;
+
+  /** \brief Denoise the signal f (graph vertex order) with strength gamma. */
+  virtual core::Signal3
+  smooth (const core::PointGraph &graph, const core::Signal3 &f, double gamma,
+          core::SolverReport &report) const = 0;
+
+  /** \brief The data-derived gamma for a graph and an estimated noise level. */
+  virtual double
+  automaticGamma (const core::PointGraph &graph, double noise) const = 0;
+
+  int k_ = 10;
+  double sigma_ = 0.0;
+  double gamma_ = 0.0;
+  bool automatic_gamma_ = true;
+  int graph_iterations_ = 1;
+  int num_threads_ = 0;
+
+  double used_gamma_ = 0.0;
+  double used_sigma_ = 0.0;
+  double estimated_noise_ = 0.0;
+  core::SolverReport report_;
+};
+
+} // namespace pcl_graph_denoise
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_graph_denoise/impl/graph_smoothing.hpp>
+#endif

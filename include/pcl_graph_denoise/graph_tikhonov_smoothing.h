@@ -1,0 +1,84 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl_graph_denoise/graph_smoothing.h>
+
+namespace pcl_graph_denoise {
+
+/** \brief Graph Tikhonov smoothing of point positions (Schoenenberger, Paratte,
+ *  Vandergheynst 2015): x = argmin 1/2 |x - f|^2 + gamma x^T L x on the k-NN graph of
+ *  the points, i.e. (I + 2 gamma L) x = f for the x, y and z columns, the low-pass
+ *  spectral filter 1 / (1 + 2 gamma lambda).
+ *
+ * gamma is unitless (L's weights are). Its default is derived from the data:
+ * gamma = C (noise / spacing)^2 / mean degree, with the noise level estimated from local
+ * plane fits (see core::defaultTikhonovGamma). The default solver is a preconditioned
+ * conjugate gradient; CHOLMOD's exact sparse Cholesky is available for small and
+ * medium clouds. See GraphSmoothing for the parameters and the output contract.
+ *
+ * \code
+ * pcl_graph_denoise::GraphTikhonovSmoothing<pcl::PointXYZ> smoother;
+ * smoother.setInputCloud (cloud);
+ * smoother.filter (*smoothed);
+ * \endcode
+ */
+template <typename PointT>
+class GraphTikhonovSmoothing : public GraphSmoothing<PointT>
+{
+  using GraphSmoothing<PointT>::filter_name_;
+
+public:
+  using Ptr = std::shared_ptr<GraphTikhonovSmoothing<PointT>>;
+  using ConstPtr = std::shared_ptr<const GraphTikhonovSmoothing<PointT>>;
+
+  GraphTikhonovSmoothing () { filter_name_ = "GraphTikhonovSmoothing"; }
+
+  /** \brief The linear solver: core::TikhonovSolver::CONJUGATE_GRADIENT (default) or
+   *  core::TikhonovSolver::CHOLMOD (exact; memory grows quickly with the cloud). */
+  inline void
+  setSolver (core::TikhonovSolver solver) { params_.solver = solver; }
+
+  /** \brief The solver set. */
+  inline core::TikhonovSolver
+  getSolver () const { return params_.solver; }
+
+  /** \brief Relative residual at which the conjugate gradient stops. Default 1e-6.
+   *  Valid: > 0. */
+  inline void
+  setTolerance (double tolerance) { params_.tolerance = tolerance; }
+
+  /** \brief The tolerance set. */
+  inline double
+  getTolerance () const { return params_.tolerance; }
+
+  /** \brief Conjugate-gradient iteration cap per pass. Default 1000. Valid: >= 1. */
+  inline void
+  setMaximumIterations (int iterations) { params_.max_iterations = iterations; }
+
+  /** \brief The iteration cap set. */
+  inline int
+  getMaximumIterations () const { return params_.max_iterations; }
+
+protected:
+  std::string
+  checkSolverParameters () const override;
+
+  core::Signal3
+  smooth (const core::PointGraph &graph, const core::Signal3 &f, double gamma,
+          core::SolverReport &report) const override;
+
+  double
+  automaticGamma (const core::PointGraph &graph, double noise) const override;
+
+private:
+  core::TikhonovParams params_;
+};
+
+} // namespace pcl_graph_denoise
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_graph_denoise/impl/graph_tikhonov_smoothing.hpp>
+#endif

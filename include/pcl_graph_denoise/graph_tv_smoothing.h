@@ -1,0 +1,84 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl_graph_denoise/graph_smoothing.h>
+
+namespace pcl_graph_denoise {
+
+/** \brief Graph total-variation smoothing of point positions (Schoenenberger, Paratte,
+ *  Vandergheynst 2015): x = argmin 1/2 |x - f|^2 + gamma sum_e |(grad x)_e| on the k-NN
+ *  graph, (grad x)_e = sqrt(w_ij) (x_i - x_j) over each edge once. It keeps sharp edges
+ *  where Tikhonov rounds them.
+ *
+ * The isotropic norm (the Euclidean norm of each edge's 3-vector difference, rotation
+ * invariant) is the default; the anisotropic one (the sum of the three absolute
+ * differences) is an option. gamma is a length, in the cloud's units; its default is
+ * derived from the data (see core::defaultTotalVariationGamma). Solved by the
+ * accelerated primal-dual algorithm of Chambolle and Pock, stopped on the relative
+ * duality gap. See GraphSmoothing for the parameters and the output contract.
+ *
+ * \code
+ * pcl_graph_denoise::GraphTVSmoothing<pcl::PointXYZ> smoother;
+ * smoother.setInputCloud (cloud);
+ * smoother.filter (*smoothed);
+ * \endcode
+ */
+template <typename PointT>
+class GraphTVSmoothing : public GraphSmoothing<PointT>
+{
+  using GraphSmoothing<PointT>::filter_name_;
+
+public:
+  using Ptr = std::shared_ptr<GraphTVSmoothing<PointT>>;
+  using ConstPtr = std::shared_ptr<const GraphTVSmoothing<PointT>>;
+
+  GraphTVSmoothing () { filter_name_ = "GraphTVSmoothing"; }
+
+  /** \brief core::TotalVariationNorm::ISOTROPIC (default) or ANISOTROPIC. */
+  inline void
+  setNorm (core::TotalVariationNorm norm) { params_.norm = norm; }
+
+  /** \brief The norm set. */
+  inline core::TotalVariationNorm
+  getNorm () const { return params_.norm; }
+
+  /** \brief Relative duality gap (gap / objective) at which the solver stops.
+   *  Default 1e-4. Valid: > 0. */
+  inline void
+  setTolerance (double tolerance) { params_.tolerance = tolerance; }
+
+  /** \brief The tolerance set. */
+  inline double
+  getTolerance () const { return params_.tolerance; }
+
+  /** \brief Primal-dual iteration cap per pass. Default 500. Valid: >= 1. */
+  inline void
+  setMaximumIterations (int iterations) { params_.max_iterations = iterations; }
+
+  /** \brief The iteration cap set. */
+  inline int
+  getMaximumIterations () const { return params_.max_iterations; }
+
+protected:
+  std::string
+  checkSolverParameters () const override;
+
+  core::Signal3
+  smooth (const core::PointGraph &graph, const core::Signal3 &f, double gamma,
+          core::SolverReport &report) const override;
+
+  double
+  automaticGamma (const core::PointGraph &graph, double noise) const override;
+
+private:
+  core::TotalVariationParams params_;
+};
+
+} // namespace pcl_graph_denoise
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_graph_denoise/impl/graph_tv_smoothing.hpp>
+#endif

@@ -1,0 +1,123 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl_graph_denoise/core/noise_level.h>
+#include <pcl_graph_denoise/graph_smoothing.h>
+#include <pcl_graph_denoise/point_cloud_adaptor.h>
+
+#include <pcl/console/print.h>
+
+#include <cmath>
+#include <exception>
+#include <string>
+
+namespace pcl_graph_denoise {
+
+template <typename PointT>
+void
+GraphSmoothing<PointT>::applyFilter (PointCloud &output)
+{
+  const std::string name = getClassName ();
+  const auto fail = [&] () {
+    output.clear ();
+    output.width = output.height = 0;
+    output.is_dense = true;
+  };
+  std::string invalid;
+  if (k_ < 1)
+    invalid = "k (setKSearch) = " + std::to_string (k_) + ": must be >= 1";
+  else if (!(std::isfinite (sigma_) && sigma_ >= 0.0))
+    invalid = "sigma (setSigma) = " + std::to_string (sigma_) + ": must be finite and >= 0";
+  else if (!automatic_gamma_ && !(std::isfinite (gamma_) && gamma_ >= 0.0))
+    invalid = "gamma (setGamma) = " + std::to_string (gamma_) + ": must be finite and >= 0";
+  else if (graph_iterations_ < 1)
+    invalid = "graph iterations (setGraphIterations) = " + std::to_string (graph_iterations_) +
+              ": must be >= 1";
+  else if (num_threads_ < 0)
+    invalid = "number of threads (setNumberOfThreads) = " + std::to_string (num_threads_) +
+              ": must be >= 0";
+  else
+    invalid = checkSolverParameters ();
+  if (invalid.empty ())
+  {
+    const std::string bad_index = checkIndices (*input_, *indices_);
+    if (!bad_index.empty ())
+      invalid = "indices: " + bad_index;
+  }
+  if (!invalid.empty ())
+  {
+    PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] Invalid %s.\n", name.c_str (),
+               invalid.c_str ());
+    return fail ();
+  }
+
+  output = *input_;
+  used_gamma_ = used_sigma_ = estimated_noise_ = 0.0;
+  report_ = core::SolverReport{};
+  const GatheredPoints gathered = gatherFinitePoints (*input_, *indices_);
+  if (gathered.repeated > 0)
+    PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] %zu repeated indices were used once.\n",
+              name.c_str (), gathered.repeated);
+  const std::size_t count = gathered.cloud_index.size ();
+  if (count == 0)
+  {
+    PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] The input has no finite point to "
+               "smooth (%zu points, %zu indices); it is returned unchanged.\n",
+               name.c_str (), input_->size (), indices_->size ());
+    return;
+  }
+  if (!automatic_gamma_ && gamma_ == 0.0)
+    return;  // the identity
+
+  const core::Signal3 start = gathered.xyz.template cast<double> ();
+  core::Signal3 position = start;
+  try
+  {
+    for (int pass = 0; pass < graph_iterations_; ++pass)
+    {
+      core::KnnGraphParams params;
+      params.k = k_;
+      params.sigma = sigma_;
+      params.num_threads = num_threads_;
+      const core::PointGraph graph =
+          core::buildKnnGraph (position.template cast<float> (), params);
+      core::Signal3 f (static_cast<Eigen::Index> (count), 3);
+      for (std::size_t v = 0; v < count; ++v)
+        f.row (v) = position.row (graph.order[v]);
+      const double noise = core::estimateNoiseLevel (graph, f, num_threads_);
+      if (pass == 0)
+        estimated_noise_ = noise;
+      used_sigma_ = graph.sigma;
+      used_gamma_ = automatic_gamma_ ? automaticGamma (graph, noise) : gamma_;
+      const core::Signal3 x = smooth (graph, f, used_gamma_, report_);
+      if (!report_.converged)
+        PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] The solver stopped after %d iterations "
+                  "at a residual of %g, above its tolerance; its last iterate is used.\n",
+                  name.c_str (), report_.iterations, report_.residual);
+      for (std::size_t v = 0; v < count; ++v)
+        position.row (graph.order[v]) = x.row (v);
+    }
+  }
+  catch (const std::exception &e)
+  {
+    PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] %s.\n", name.c_str (), e.what ());
+    return fail ();
+  }
+
+  // Move each point by its displacement: a point that did not move keeps its exact
+  // coordinates.
+  for (std::size_t r = 0; r < count; ++r)
+  {
+    PointT &p = output[gathered.cloud_index[r]];
+    p.x = static_cast<float> (double (p.x) + (position (r, 0) - start (r, 0)));
+    p.y = static_cast<float> (double (p.y) + (position (r, 1) - start (r, 1)));
+    p.z = static_cast<float> (double (p.z) + (position (r, 2) - start (r, 2)));
+  }
+}
+
+} // namespace pcl_graph_denoise
+
+#define PCL_INSTANTIATE_GraphSmoothing(T) template class pcl_graph_denoise::GraphSmoothing<T>;

@@ -1,0 +1,116 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include "cholmod_solver.h"
+
+#include <cholmod.h>
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace pcl_graph_denoise {
+namespace core {
+namespace detail {
+
+namespace {
+
+/** CHOLMOD's workspace, started and finished with the solve. */
+class Common
+{
+public:
+  Common () { cholmod_l_start (&common_); }
+  ~Common () { cholmod_l_finish (&common_); }
+  Common (const Common &) = delete;
+  Common &
+  operator= (const Common &) = delete;
+  cholmod_common *
+  get () { return &common_; }
+
+private:
+  cholmod_common common_;
+};
+
+void
+check (bool ok, cholmod_common *c, const char *what)
+{
+  if (!ok || c->status < CHOLMOD_OK)
+    throw std::runtime_error (std::string ("CHOLMOD failed in ") + what + " (status " +
+                              std::to_string (c->status) + ")");
+}
+
+} // namespace
+
+Signal3
+solveTikhonovCholmod (const PointGraph &graph, const Signal3 &f, double gamma)
+{
+  const std::size_t n = graph.numVertices ();
+  Common common;
+  cholmod_common *c = common.get ();
+
+  // The lower triangle (stype -1) in compressed columns: column i holds the diagonal
+  // 1 + 2 gamma d_i, then -2 gamma w_ij for the neighbours j > i (the upper part of CSR
+  // row i, which is sorted).
+  std::size_t nnz = n;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+      nnz += graph.col[e] > i;
+  cholmod_sparse *a = cholmod_l_allocate_sparse (n, n, nnz, 1, 1, -1, CHOLMOD_REAL, c);
+  check (a != nullptr, c, "allocate_sparse");
+  auto *cp = static_cast<SuiteSparse_long *> (a->p);
+  auto *ci = static_cast<SuiteSparse_long *> (a->i);
+  auto *cx = static_cast<double *> (a->x);
+  SuiteSparse_long pos = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    cp[i] = pos;
+    double degree = 0.0;
+    for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+      degree += graph.weight[e];
+    ci[pos] = static_cast<SuiteSparse_long> (i);
+    cx[pos++] = 1.0 + 2.0 * gamma * degree;
+    for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+      if (graph.col[e] > i)
+      {
+        ci[pos] = graph.col[e];
+        cx[pos++] = -2.0 * gamma * graph.weight[e];
+      }
+  }
+  cp[n] = pos;
+
+  cholmod_dense *b = cholmod_l_allocate_dense (n, 3, n, CHOLMOD_REAL, c);
+  check (b != nullptr, c, "allocate_dense");
+  auto *bx = static_cast<double *> (b->x);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int col = 0; col < 3; ++col)
+      bx[col * n + i] = f (i, col);
+
+  cholmod_factor *factor = cholmod_l_analyze (a, c);
+  const bool analysed = factor != nullptr && c->status >= CHOLMOD_OK;
+  const bool factorised = analysed && cholmod_l_factorize (a, factor, c) && c->status >= CHOLMOD_OK;
+  cholmod_dense *x = factorised ? cholmod_l_solve (CHOLMOD_A, factor, b, c) : nullptr;
+  Signal3 out;
+  const bool solved = x != nullptr && c->status >= CHOLMOD_OK;
+  if (solved)
+  {
+    out.resize (static_cast<Eigen::Index> (n), 3);
+    const auto *xx = static_cast<const double *> (x->x);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int col = 0; col < 3; ++col)
+        out (i, col) = xx[col * n + i];
+  }
+  const int status = c->status;
+  cholmod_l_free_dense (&x, c);
+  cholmod_l_free_factor (&factor, c);
+  cholmod_l_free_dense (&b, c);
+  cholmod_l_free_sparse (&a, c);
+  if (!solved)
+    throw std::runtime_error ("CHOLMOD could not factorise or solve the Tikhonov system (status " +
+                              std::to_string (status) + ")");
+  return out;
+}
+
+} // namespace detail
+} // namespace core
+} // namespace pcl_graph_denoise

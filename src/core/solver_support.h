@@ -1,0 +1,86 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+/* Private to the core: what the solvers share (checks, deterministic norms). */
+
+#include <pcl_graph_denoise/core/graph.h>
+
+#include "parallel.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace pcl_graph_denoise {
+namespace core {
+namespace detail {
+
+/** Three running sums (one per column), zero-initialised. */
+struct Sum3
+{
+  double v[3] = {0.0, 0.0, 0.0};
+  Sum3 &
+  operator+= (const Sum3 &o)
+  {
+    for (int c = 0; c < 3; ++c)
+      v[c] += o.v[c];
+    return *this;
+  }
+};
+
+/** Frobenius norm of an N x 3 signal, independent of the thread count. */
+inline double
+frobenius (const Signal3 &x, int num_threads)
+{
+  return std::sqrt (parallelSum<double> (static_cast<std::size_t> (x.rows ()), num_threads,
+                                         [&] (std::size_t begin, std::size_t end) {
+                                           double s = 0.0;
+                                           for (std::size_t i = begin; i < end; ++i)
+                                             s += x.row (i).squaredNorm ();
+                                           return s;
+                                         }));
+}
+
+/** Frobenius norm of x minus its column means. */
+inline double
+centredNorm (const Signal3 &x, int num_threads)
+{
+  const std::size_t n = static_cast<std::size_t> (x.rows ());
+  if (n == 0)
+    return 0.0;
+  const Sum3 sum = parallelSum<Sum3> (n, num_threads, [&] (std::size_t begin, std::size_t end) {
+    Sum3 s;
+    for (std::size_t i = begin; i < end; ++i)
+      for (int c = 0; c < 3; ++c)
+        s.v[c] += x (i, c);
+    return s;
+  });
+  const double mean[3] = {sum.v[0] / n, sum.v[1] / n, sum.v[2] / n};
+  return std::sqrt (parallelSum<double> (n, num_threads, [&] (std::size_t begin, std::size_t end) {
+    double s = 0.0;
+    for (std::size_t i = begin; i < end; ++i)
+      for (int c = 0; c < 3; ++c)
+        s += (x (i, c) - mean[c]) * (x (i, c) - mean[c]);
+    return s;
+  }));
+}
+
+/** Checks shared by the solvers; throws std::invalid_argument. */
+inline void
+requireSolverInput (const PointGraph &graph, const Signal3 &f, double gamma, int num_threads)
+{
+  if (static_cast<std::size_t> (f.rows ()) != graph.numVertices ())
+    throw std::invalid_argument ("the signal has the wrong number of rows");
+  if (!(std::isfinite (gamma) && gamma >= 0.0))
+    throw std::invalid_argument ("gamma must be finite and >= 0");
+  if (num_threads < 0)
+    throw std::invalid_argument ("num_threads must be >= 0");
+  if (!f.allFinite ())
+    throw std::invalid_argument ("the signal must be finite");
+}
+
+} // namespace detail
+} // namespace core
+} // namespace pcl_graph_denoise

@@ -1,0 +1,154 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include <pcl_graph_denoise/core/operators.h>
+#include <pcl_graph_denoise/core/solvers.h>
+
+#include "cholmod_solver.h"
+#include "parallel.h"
+#include "solver_support.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace pcl_graph_denoise {
+namespace core {
+
+namespace {
+
+/** Jacobi-preconditioned conjugate gradient on (I + 2 gamma L), one scalar step size per
+ *  column, the three columns fused in each pass over the graph. */
+Signal3
+conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
+                   const TikhonovParams &params, SolverReport &report)
+{
+  const std::size_t n = graph.numVertices ();
+  const int threads = params.num_threads;
+  const double g2 = 2.0 * gamma;
+  const std::vector<double> degree = weightedDegree (graph, threads);
+
+  // A p for the current direction, with the column dot products p . A p.
+  auto applyA = [&] (const Signal3 &p, Signal3 &q) {
+    return detail::parallelSum<detail::Sum3> (n, threads, [&] (std::size_t begin, std::size_t end) {
+      detail::Sum3 pq;
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        double a[3] = {0.0, 0.0, 0.0};
+        for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+        {
+          const double w = graph.weight[e];
+          const VertexIndex j = graph.col[e];
+          for (int c = 0; c < 3; ++c)
+            a[c] += w * (p (i, c) - p (j, c));
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+          q (i, c) = p (i, c) + g2 * a[c];
+          pq.v[c] += p (i, c) * q (i, c);
+        }
+      }
+      return pq;
+    });
+  };
+
+  const double scale = detail::centredNorm (f, threads);
+  Signal3 x = f, r (n, 3), z (n, 3), p (n, 3), q (n, 3);
+  // r = f - A f = -2 gamma L f.
+  applyA (x, q);
+  r = f - q;
+  auto precondition = [&] () {
+    return detail::parallelSum<detail::Sum3> (n, threads, [&] (std::size_t begin, std::size_t end) {
+      detail::Sum3 rz;
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        const double m = 1.0 / (1.0 + g2 * degree[i]);
+        for (int c = 0; c < 3; ++c)
+        {
+          z (i, c) = m * r (i, c);
+          rz.v[c] += r (i, c) * z (i, c);
+        }
+      }
+      return rz;
+    });
+  };
+  detail::Sum3 rz = precondition ();
+  p = z;
+  double residual = detail::frobenius (r, threads);
+  report.residual = scale > 0.0 ? residual / scale : 0.0;
+  report.converged = residual <= params.tolerance * scale;
+  int it = 0;
+  while (!report.converged && it < params.max_iterations)
+  {
+    const detail::Sum3 pq = applyA (p, q);
+    double alpha[3];
+    for (int c = 0; c < 3; ++c)
+      alpha[c] = pq.v[c] > 0.0 ? rz.v[c] / pq.v[c] : 0.0;
+    residual = std::sqrt (
+        detail::parallelSum<double> (n, threads, [&] (std::size_t begin, std::size_t end) {
+          double rr = 0.0;
+          for (std::size_t i = begin; i < end; ++i)
+            for (int c = 0; c < 3; ++c)
+            {
+              x (i, c) += alpha[c] * p (i, c);
+              r (i, c) -= alpha[c] * q (i, c);
+              rr += r (i, c) * r (i, c);
+            }
+          return rr;
+        }));
+    ++it;
+    report.residual = scale > 0.0 ? residual / scale : 0.0;
+    report.converged = residual <= params.tolerance * scale;
+    if (report.converged)
+      break;
+    const detail::Sum3 rz_new = precondition ();
+    double beta[3];
+    for (int c = 0; c < 3; ++c)
+      beta[c] = rz.v[c] > 0.0 ? rz_new.v[c] / rz.v[c] : 0.0;
+    rz = rz_new;
+    detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i)
+        for (int c = 0; c < 3; ++c)
+          p (i, c) = z (i, c) + beta[c] * p (i, c);
+    });
+  }
+  report.iterations = it;
+  return x;
+}
+
+} // namespace
+
+Signal3
+solveTikhonov (const PointGraph &graph, const Signal3 &f, double gamma,
+               const TikhonovParams &params, SolverReport *report)
+{
+  detail::requireSolverInput (graph, f, gamma, params.num_threads);
+  if (!(std::isfinite (params.tolerance) && params.tolerance > 0.0))
+    throw std::invalid_argument ("tolerance must be finite and > 0");
+  if (params.max_iterations < 0)
+    throw std::invalid_argument ("max_iterations must be >= 0");
+
+  SolverReport local;
+  SolverReport &out = report ? *report : local;
+  out = SolverReport{};
+  if (gamma == 0.0 || graph.numEntries () == 0)
+  {
+    out.converged = true;
+    return f;
+  }
+  if (params.solver == TikhonovSolver::CHOLMOD)
+  {
+    Signal3 x = detail::solveTikhonovCholmod (graph, f, gamma);
+    out.converged = true;
+    out.iterations = 1;
+    Signal3 lx;
+    applyLaplacian (graph, x, lx, params.num_threads);
+    const double scale = detail::centredNorm (f, params.num_threads);
+    out.residual = scale > 0.0 ? (x + 2.0 * gamma * lx - f).norm () / scale : 0.0;
+    return x;
+  }
+  return conjugateGradient (graph, f, gamma, params, out);
+}
+
+} // namespace core
+} // namespace pcl_graph_denoise

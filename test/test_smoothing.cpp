@@ -1,0 +1,488 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ *
+ * GraphTikhonovSmoothing and GraphTVSmoothing: the smoother's contract over several
+ * point types, denoising quality with default parameters, edges, and bad input.
+ */
+#include <pcl_graph_denoise/graph_tikhonov_smoothing.h>
+#include <pcl_graph_denoise/graph_tv_smoothing.h>
+#include <pcl_graph_denoise/point_cloud_adaptor.h>
+
+#include "synthetic.h"
+#include "test_clouds.h"
+
+#include <gtest/gtest.h>
+
+#include <pcl/io/pcd_io.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <random>
+
+using namespace pcl_graph_denoise;
+using namespace pcl_graph_denoise::testing;
+
+namespace {
+
+using Distance = std::function<double (const Eigen::Vector3d &)>;
+
+const Distance kToPlane = [] (const Eigen::Vector3d &p) { return std::abs (p.z ()); };
+const Distance kToSphere = [] (const Eigen::Vector3d &p) { return std::abs (p.norm () - 1.0); };
+const Distance kToCube = [] (const Eigen::Vector3d &p) {
+  const Eigen::Vector3d d = p.cwiseAbs ().array () - 1.0;
+  const double outside = d.cwiseMax (0.0).norm ();
+  return outside > 0.0 ? outside : -d.maxCoeff ();
+};
+
+template <typename PointT>
+double
+meanDistance (const pcl::PointCloud<PointT> &cloud, const Distance &distance,
+              const std::function<bool (const Eigen::Vector3d &)> &where = nullptr)
+{
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const auto &p : cloud)
+  {
+    const Eigen::Vector3d q (p.x, p.y, p.z);
+    if (where && !where (q))
+      continue;
+    sum += distance (q);
+    ++count;
+  }
+  return count ? sum / count : 0.0;
+}
+
+/** Bytes of a point other than x, y, z. */
+template <typename PointT>
+bool
+sameFieldsButXYZ (PointT a, PointT b)
+{
+  a.x = b.x;
+  a.y = b.y;
+  a.z = b.z;
+  return samePoint (a, b);
+}
+
+template <typename Filter>
+typename pcl::PointCloud<pcl::PointXYZ>::Ptr
+run (Filter &filter, const pcl::PointCloud<pcl::PointXYZ>::Ptr &cloud)
+{
+  auto out = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  filter.setInputCloud (cloud);
+  filter.filter (*out);
+  return out;
+}
+
+} // namespace
+
+// ---- The smoother's contract, for both filters and several point types ------------
+
+/** P = std::pair<point type, filter type>. */
+template <typename P>
+class SmoothingContract : public ::testing::Test
+{
+protected:
+  using PointT = typename P::first_type;
+  using Filter = typename P::second_type;
+  typename pcl::PointCloud<PointT>::Ptr cloud =
+      withFields<PointT> (synthetic::noisySphere (4000, 1.0, 0.02, 21));
+};
+
+using Pairs = ::testing::Types<
+    std::pair<pcl::PointXYZ, GraphTikhonovSmoothing<pcl::PointXYZ>>,
+    std::pair<pcl::PointXYZRGB, GraphTikhonovSmoothing<pcl::PointXYZRGB>>,
+    std::pair<pcl::PointNormal, GraphTikhonovSmoothing<pcl::PointNormal>>,
+    std::pair<pcl::PointXYZ, GraphTVSmoothing<pcl::PointXYZ>>,
+    std::pair<pcl::PointXYZRGB, GraphTVSmoothing<pcl::PointXYZRGB>>,
+    std::pair<pcl::PointNormal, GraphTVSmoothing<pcl::PointNormal>>>;
+TYPED_TEST_SUITE (SmoothingContract, Pairs);
+
+TYPED_TEST (SmoothingContract, KeepsSizeFieldsAndHeaderAndReducesNoise)
+{
+  using PointT = typename TestFixture::PointT;
+  const auto before = deepCopy (*this->cloud);
+  typename TestFixture::Filter filter;
+  filter.setInputCloud (this->cloud);
+  pcl::PointCloud<PointT> out;
+  filter.filter (out);
+  EXPECT_TRUE (sameCloud (*this->cloud, before));  // input untouched
+  ASSERT_EQ (out.size (), this->cloud->size ());
+  EXPECT_EQ (out.width, this->cloud->width);
+  EXPECT_EQ (out.height, this->cloud->height);
+  EXPECT_EQ (out.header.frame_id, this->cloud->header.frame_id);
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < out.size (); ++i)
+  {
+    ASSERT_TRUE (sameFieldsButXYZ (out[i], (*this->cloud)[i]));
+    moved += !samePoint (out[i], (*this->cloud)[i]);
+  }
+  EXPECT_GT (moved, out.size () / 2);
+  EXPECT_LT (meanDistance (out, kToSphere), 0.6 * meanDistance (*this->cloud, kToSphere));
+  EXPECT_GT (filter.getUsedGamma (), 0.0);
+  EXPECT_GT (filter.getUsedSigma (), 0.0);
+  EXPECT_NEAR (filter.getEstimatedNoise (), 0.02, 0.004);
+  EXPECT_TRUE (filter.getSolverReport ().converged);
+}
+
+TYPED_TEST (SmoothingContract, NonFinitePointsPassThroughAndIndicesAreHonoured)
+{
+  using PointT = typename TestFixture::PointT;
+  auto cloud = std::make_shared<pcl::PointCloud<PointT>> (*this->cloud);
+  for (std::size_t i = 0; i < cloud->size (); i += 50)
+    (*cloud)[i].y = (i % 100 == 0) ? std::numeric_limits<float>::quiet_NaN ()
+                                   : -std::numeric_limits<float>::infinity ();
+  auto indices = std::make_shared<pcl::Indices> ();
+  for (int i = 0; i < static_cast<int> (cloud->size ()); ++i)
+    if ((*this->cloud)[i].z > 0.0f)  // the upper half only
+      indices->push_back (i);
+  typename TestFixture::Filter filter;
+  filter.setInputCloud (cloud);
+  filter.setIndices (indices);
+  pcl::PointCloud<PointT> out;
+  filter.filter (out);
+  ASSERT_EQ (out.size (), cloud->size ());
+  std::vector<std::uint8_t> in_indices (cloud->size (), 0);
+  for (auto i : *indices)
+    in_indices[i] = 1;
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < out.size (); ++i)
+  {
+    if (!isFinitePosition ((*cloud)[i]) || !in_indices[i])
+      ASSERT_TRUE (samePoint (out[i], (*cloud)[i])) << i;
+    else
+      moved += !samePoint (out[i], (*cloud)[i]);
+  }
+  EXPECT_GT (moved, indices->size () / 2);
+}
+
+TYPED_TEST (SmoothingContract, ZeroGammaIsTheIdentityAndInPlaceEqualsOutOfPlace)
+{
+  using PointT = typename TestFixture::PointT;
+  typename TestFixture::Filter filter;
+  filter.setInputCloud (this->cloud);
+  filter.setGamma (0.0);
+  pcl::PointCloud<PointT> out;
+  filter.filter (out);
+  EXPECT_TRUE (sameCloud (out, *this->cloud));
+
+  filter.setAutomaticGamma ();
+  filter.filter (out);
+  auto in_place = std::make_shared<pcl::PointCloud<PointT>> (*this->cloud);
+  filter.setInputCloud (in_place);
+  filter.filter (*in_place);
+  EXPECT_TRUE (sameCloud (*in_place, out));
+}
+
+TYPED_TEST (SmoothingContract, ResultDoesNotDependOnThreadCountOrRuns)
+{
+  using PointT = typename TestFixture::PointT;
+  typename TestFixture::Filter filter;
+  filter.setInputCloud (this->cloud);
+  pcl::PointCloud<PointT> one, two, again;
+  filter.setNumberOfThreads (1);
+  filter.filter (one);
+  filter.setNumberOfThreads (2);
+  filter.filter (two);
+  filter.filter (again);
+  EXPECT_TRUE (sameCloud (one, two));
+  EXPECT_TRUE (sameCloud (two, again));
+}
+
+TYPED_TEST (SmoothingContract, InvalidParametersAreNamed)
+{
+  using PointT = typename TestFixture::PointT;
+  const double nan = std::numeric_limits<double>::quiet_NaN ();
+  const std::vector<std::pair<std::function<void (typename TestFixture::Filter &)>, std::string>>
+      cases = {
+          {[] (auto &f) { f.setKSearch (0); }, "k (setKSearch)"},
+          {[] (auto &f) { f.setKSearch (-3); }, "k (setKSearch)"},
+          {[] (auto &f) { f.setSigma (-1.0); }, "sigma"},
+          {[&] (auto &f) { f.setSigma (nan); }, "sigma"},
+          {[] (auto &f) { f.setGamma (-1.0); }, "gamma"},
+          {[&] (auto &f) { f.setGamma (nan); }, "gamma"},
+          {[] (auto &f) { f.setGamma (std::numeric_limits<double>::infinity ()); }, "gamma"},
+          {[] (auto &f) { f.setGraphIterations (0); }, "graph iterations"},
+          {[] (auto &f) { f.setNumberOfThreads (-1); }, "number of threads"},
+          {[] (auto &f) { f.setTolerance (0.0); }, "tolerance"},
+          {[&] (auto &f) { f.setTolerance (nan); }, "tolerance"},
+          {[] (auto &f) { f.setMaximumIterations (0); }, "maximum iterations"},
+      };
+  const auto before = deepCopy (*this->cloud);
+  for (const auto &c : cases)
+  {
+    typename TestFixture::Filter filter;
+    c.first (filter);
+    filter.setInputCloud (this->cloud);
+    pcl::PointCloud<PointT> out = *this->cloud;
+    ::testing::internal::CaptureStderr ();
+    filter.filter (out);
+    const std::string err = ::testing::internal::GetCapturedStderr ();
+    EXPECT_TRUE (out.empty ()) << c.second;
+    EXPECT_NE (err.find (c.second), std::string::npos) << err;
+    EXPECT_NE (err.find ("Graph"), std::string::npos) << err;
+  }
+  EXPECT_TRUE (sameCloud (*this->cloud, before));
+}
+
+// ---- Quality with default parameters -------------------------------------------------
+
+TEST (SmoothingQuality, NoiseGoesDownOnPlaneSphereAndCube)
+{
+  struct Shape
+  {
+    const char *name;
+    synthetic::Cloud cloud;
+    Distance distance;
+  };
+  const std::vector<Shape> shapes = {
+      {"plane", synthetic::noisyPlane (20000, 0.01, 31), kToPlane},
+      {"sphere", synthetic::noisySphere (20000, 1.0, 0.01, 32), kToSphere},
+      {"cube", synthetic::noisyCube (20000, 0.01, 33), kToCube}};
+  for (const auto &shape : shapes)
+  {
+    auto cloud = std::make_shared<synthetic::Cloud> (shape.cloud);
+    const double noisy = meanDistance (*cloud, shape.distance);
+    GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
+    GraphTVSmoothing<pcl::PointXYZ> tv;
+    const double t = meanDistance (*run (tikhonov, cloud), shape.distance);
+    const double v = meanDistance (*run (tv, cloud), shape.distance);
+    EXPECT_LT (t, 0.6 * noisy) << shape.name << ": " << noisy << " -> " << t;
+    EXPECT_LT (v, 0.6 * noisy) << shape.name << ": " << noisy << " -> " << v;
+    std::printf ("%s: noisy %.5f, Tikhonov %.5f, TV %.5f\n", shape.name, noisy, t, v);
+  }
+}
+
+TEST (SmoothingQuality, UnitInvariantDefaults)
+{
+  auto metres = std::make_shared<synthetic::Cloud> (synthetic::noisySphere (5000, 1.0, 0.02, 34));
+  auto millimetres = std::make_shared<synthetic::Cloud> (*metres);
+  for (auto &p : *millimetres)
+    p.getVector3fMap () *= 1000.0f;
+  GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
+  const auto a = run (tikhonov, metres);
+  const double gamma = tikhonov.getUsedGamma ();
+  const auto b = run (tikhonov, millimetres);
+  EXPECT_NEAR (tikhonov.getUsedGamma (), gamma, 1e-3 * gamma);  // unitless
+  for (std::size_t i = 0; i < a->size (); ++i)
+    ASSERT_LT (((*b)[i].getVector3fMap () / 1000.0f - (*a)[i].getVector3fMap ()).norm (), 1e-4);
+  GraphTVSmoothing<pcl::PointXYZ> tv;
+  const auto c = run (tv, metres);
+  const double length = tv.getUsedGamma ();
+  const auto d = run (tv, millimetres);
+  EXPECT_NEAR (tv.getUsedGamma (), 1000.0 * length, 1e-3 * 1000.0 * length);  // a length
+  for (std::size_t i = 0; i < c->size (); ++i)
+    ASSERT_LT (((*d)[i].getVector3fMap () / 1000.0f - (*c)[i].getVector3fMap ()).norm (), 1e-4);
+}
+
+TEST (SmoothingQuality, TotalVariationKeepsCubeEdgesSharperThanTikhonov)
+{
+  auto cloud = std::make_shared<synthetic::Cloud> (synthetic::noisyCube (30000, 0.01, 35));
+  // Points within 0.1 of an edge of the cube: two coordinates near +-1.
+  const auto near_edge = [] (const Eigen::Vector3d &p) {
+    int near = 0;
+    for (int d = 0; d < 3; ++d)
+      near += std::abs (std::abs (p (d)) - 1.0) < 0.1;
+    return near >= 2;
+  };
+  GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
+  GraphTVSmoothing<pcl::PointXYZ> tv;
+  const double t = meanDistance (*run (tikhonov, cloud), kToCube, near_edge);
+  const double v = meanDistance (*run (tv, cloud), kToCube, near_edge);
+  std::printf ("cube edges: Tikhonov %.5f, TV %.5f\n", t, v);
+  EXPECT_LT (v, t);
+}
+
+TEST (SmoothingQuality, TotalVariationKeepsAStepSharperThanTikhonov)
+{
+  // A step: the floor z = 0 for x < 0, the riser x = 0 up to z = 0.3, the top z = 0.3
+  // for x > 0, y in [-1, 1], sampled uniformly by area, 0.5% noise.
+  const double h = 0.3;
+  std::mt19937_64 rng (36);
+  std::uniform_real_distribution<double> along (0.0, 2.0 + h), across (-1.0, 1.0);
+  std::normal_distribution<double> g (0.0, 0.005);
+  auto cloud = std::make_shared<synthetic::Cloud> ();
+  for (int i = 0; i < 30000; ++i)
+  {
+    const double t = along (rng);
+    const double x = t < 1.0 ? t - 1.0 : (t < 1.0 + h ? 0.0 : t - 1.0 - h);
+    const double z = t < 1.0 ? 0.0 : (t < 1.0 + h ? t - 1.0 : h);
+    cloud->push_back (pcl::PointXYZ (float (x + g (rng)), float (across (rng) + g (rng)),
+                                     float (z + g (rng))));
+  }
+  const Distance to_step = [h] (const Eigen::Vector3d &p) {
+    const Eigen::Vector2d q (p.x (), p.z ());
+    const double floor = Eigen::Vector2d (std::min (q.x (), 0.0) - q.x (), q.y ()).norm ();
+    const double riser = Eigen::Vector2d (q.x (), q.y () - std::clamp (q.y (), 0.0, h)).norm ();
+    const double top = Eigen::Vector2d (q.x () - std::max (q.x (), 0.0), q.y () - h).norm ();
+    return std::min ({floor, riser, top});
+  };
+  // Within 0.05 (about three point spacings) of either edge line.
+  const auto near_edges = [h] (const Eigen::Vector3d &p) {
+    return Eigen::Vector2d (p.x (), p.z ()).norm () < 0.05 ||
+           Eigen::Vector2d (p.x (), p.z () - h).norm () < 0.05;
+  };
+  GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
+  GraphTVSmoothing<pcl::PointXYZ> tv;
+  const double t = meanDistance (*run (tikhonov, cloud), to_step, near_edges);
+  const double v = meanDistance (*run (tv, cloud), to_step, near_edges);
+  std::printf ("step edges: noisy %.5f, Tikhonov %.5f, TV %.5f\n",
+               meanDistance (*cloud, to_step, near_edges), t, v);
+  EXPECT_LT (v, t);
+}
+
+TEST (SmoothingQuality, GraphIterationsRebuildTheGraph)
+{
+  auto cloud = std::make_shared<synthetic::Cloud> (synthetic::noisySphere (8000, 1.0, 0.02, 37));
+  GraphTikhonovSmoothing<pcl::PointXYZ> once, twice;
+  twice.setGraphIterations (2);
+  const auto a = run (once, cloud);
+  const auto b = run (twice, cloud);
+  // A second pass on the first pass's output: the same as running the filter on it.
+  GraphTikhonovSmoothing<pcl::PointXYZ> again;
+  const auto c = run (again, a);
+  for (std::size_t i = 0; i < b->size (); ++i)
+    ASSERT_LT (((*b)[i].getVector3fMap () - (*c)[i].getVector3fMap ()).norm (), 1e-5);
+  EXPECT_LT (meanDistance (*b, kToSphere), meanDistance (*cloud, kToSphere));
+}
+
+TEST (SmoothingQuality, ExplicitParametersAreUsed)
+{
+  auto cloud = std::make_shared<synthetic::Cloud> (synthetic::noisySphere (3000, 1.0, 0.02, 38));
+  GraphTikhonovSmoothing<pcl::PointXYZ> filter;
+  filter.setGamma (2.5);
+  filter.setSigma (0.05);
+  filter.setKSearch (6);
+  filter.setSolver (core::TikhonovSolver::CHOLMOD);
+  const auto direct = run (filter, cloud);
+  EXPECT_EQ (filter.getUsedGamma (), 2.5);
+  EXPECT_EQ (filter.getUsedSigma (), 0.05);
+  EXPECT_FALSE (filter.getAutomaticGamma ());
+  filter.setSolver (core::TikhonovSolver::CONJUGATE_GRADIENT);
+  filter.setTolerance (1e-10);
+  const auto iterative = run (filter, cloud);
+  for (std::size_t i = 0; i < cloud->size (); ++i)
+    ASSERT_LT (((*direct)[i].getVector3fMap () - (*iterative)[i].getVector3fMap ()).norm (), 1e-5);
+  // Anisotropic TV favours coordinates that are constant over regions, such as the
+  // faces of an axis-aligned cube; it is a different minimiser from the isotropic one.
+  auto cube = std::make_shared<synthetic::Cloud> (synthetic::noisyCube (5000, 0.02, 38));
+  GraphTVSmoothing<pcl::PointXYZ> tv;
+  const auto isotropic = run (tv, cube);
+  tv.setNorm (core::TotalVariationNorm::ANISOTROPIC);
+  EXPECT_EQ (tv.getNorm (), core::TotalVariationNorm::ANISOTROPIC);
+  const auto anisotropic = run (tv, cube);
+  EXPECT_LT (meanDistance (*anisotropic, kToCube), 0.7 * meanDistance (*cube, kToCube));
+  double difference = 0.0;
+  for (std::size_t i = 0; i < cube->size (); ++i)
+    difference += ((*isotropic)[i].getVector3fMap () - (*anisotropic)[i].getVector3fMap ()).norm ();
+  EXPECT_GT (difference / cube->size (), 1e-4);
+}
+
+TEST (SmoothingQuality, IterationCapWarnsAndKeepsTheIterate)
+{
+  auto cloud = std::make_shared<synthetic::Cloud> (synthetic::noisySphere (3000, 1.0, 0.02, 39));
+  GraphTVSmoothing<pcl::PointXYZ> tv;
+  tv.setMaximumIterations (2);
+  tv.setTolerance (1e-12);
+  ::testing::internal::CaptureStderr ();
+  const auto out = run (tv, cloud);
+  const std::string err = ::testing::internal::GetCapturedStderr ();
+  EXPECT_NE (err.find ("stopped after 2 iterations"), std::string::npos) << err;
+  EXPECT_FALSE (tv.getSolverReport ().converged);
+  ASSERT_EQ (out->size (), cloud->size ());
+  for (const auto &p : *out)
+    ASSERT_TRUE (isFinitePosition (p));
+}
+
+// ---- Bad input -----------------------------------------------------------------------
+
+TEST (SmoothingBadInput, EmptyAllNaNOnePointDuplicatesAndFewPoints)
+{
+  GraphTVSmoothing<pcl::PointXYZ> filter;
+  pcl::PointCloud<pcl::PointXYZ> out;
+  // Empty: an error and an empty result.
+  auto empty = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  filter.setInputCloud (empty);
+  ::testing::internal::CaptureStderr ();
+  filter.filter (out);
+  EXPECT_NE (::testing::internal::GetCapturedStderr ().find ("no finite point"), std::string::npos);
+  EXPECT_TRUE (out.empty ());
+  // All NaN: an error, the cloud comes back unchanged.
+  auto nan = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> (
+      5, 2, pcl::PointXYZ (std::numeric_limits<float>::quiet_NaN (), 0.0f, 0.0f));
+  filter.setInputCloud (nan);
+  ::testing::internal::CaptureStderr ();
+  filter.filter (out);
+  EXPECT_NE (::testing::internal::GetCapturedStderr ().find ("no finite point"), std::string::npos);
+  EXPECT_EQ (out.width, 5u);
+  EXPECT_EQ (out.height, 2u);
+  EXPECT_TRUE (std::isnan (out[3].x));
+  // One point: no neighbour, it does not move.
+  auto one = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  one->push_back (pcl::PointXYZ (1.5f, -2.0f, 3.25f));
+  filter.setInputCloud (one);
+  filter.filter (out);
+  ASSERT_EQ (out.size (), 1u);
+  EXPECT_TRUE (samePoint (out[0], (*one)[0]));
+  // Fewer points than k, with duplicates: defined and finite.
+  auto few = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  for (int i = 0; i < 4; ++i)
+    few->push_back (pcl::PointXYZ (0.1f * i, 0.0f, 0.0f));
+  few->push_back ((*few)[1]);
+  GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
+  tikhonov.setInputCloud (few);
+  tikhonov.filter (out);
+  ASSERT_EQ (out.size (), 5u);
+  for (const auto &p : out)
+    EXPECT_TRUE (isFinitePosition (p));
+  // All points identical: nothing to smooth, nothing moves.
+  auto same = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  same->resize (40, pcl::PointXYZ (1.0f, 2.0f, 3.0f));
+  tikhonov.setInputCloud (same);
+  tikhonov.filter (out);
+  EXPECT_TRUE (sameCloud (out, *same));
+}
+
+TEST (SmoothingBadInput, IndicesOutOfRange)
+{
+  auto cloud = std::make_shared<synthetic::Cloud> (synthetic::noisySphere (500, 1.0, 0.02, 40));
+  GraphTikhonovSmoothing<pcl::PointXYZ> filter;
+  filter.setInputCloud (cloud);
+  filter.setIndices (std::make_shared<pcl::Indices> (pcl::Indices{0, 1, 5000}));
+  pcl::PointCloud<pcl::PointXYZ> out = *cloud;
+  ::testing::internal::CaptureStderr ();
+  filter.filter (out);
+  EXPECT_NE (::testing::internal::GetCapturedStderr ().find ("out of range"), std::string::npos);
+  EXPECT_TRUE (out.empty ());
+}
+
+// ---- Real data ----------------------------------------------------------------------
+
+TEST (SmoothingSharedData, OrganisedKinectCloudKeepsItsShape)
+{
+  const std::string path = sharedDataPath ("real/pcl/table_scene_mug_stereo_textured.pcd");
+  PGD_REQUIRE_SHARED_FILE (path);
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZRGBA>> ();
+  ASSERT_EQ (pcl::io::loadPCDFile (path, *cloud), 0);
+  ASSERT_EQ (cloud->width, 640u);
+  ASSERT_EQ (cloud->height, 480u);
+  GraphTVSmoothing<pcl::PointXYZRGBA> filter;
+  filter.setInputCloud (cloud);
+  pcl::PointCloud<pcl::PointXYZRGBA> out;
+  filter.filter (out);
+  ASSERT_EQ (out.width, 640u);
+  ASSERT_EQ (out.height, 480u);
+  EXPECT_EQ (out.is_dense, cloud->is_dense);
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < out.size (); ++i)
+  {
+    ASSERT_TRUE (sameFieldsButXYZ (out[i], (*cloud)[i]));
+    if (!isFinitePosition ((*cloud)[i]))
+      ASSERT_TRUE (samePoint (out[i], (*cloud)[i]));
+    else
+      moved += !samePoint (out[i], (*cloud)[i]);
+  }
+  EXPECT_GT (moved, 100000u);
+}
