@@ -46,7 +46,7 @@ public:
   getNorm () const { return params_.norm; }
 
   /** \brief Relative duality gap (gap / objective) at which the solver stops.
-   *  Default 1e-4. Valid: > 0. */
+   *  Default 1e-3. Valid: > 0. */
   inline void
   setTolerance (double tolerance) { params_.tolerance = tolerance; }
 
