@@ -6,6 +6,7 @@
 
 #include <pcl/common/common.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -116,6 +117,45 @@ addUniformOutliers (Cloud &cloud, double fraction, double margin, std::uint64_t 
   return is_outlier;
 }
 
+namespace {
+
+// The demo scene's geometry, shared by demoScene and demoSceneError.
+const Eigen::Vector3d kBoxLo (-0.45, -0.2, 0.0), kBoxHi (-0.15, 0.1, 0.3);
+const Eigen::Vector3d kBallCentre (0.25, 0.0, 0.12);
+constexpr double kBallRadius = 0.12;
+
+double
+distanceToBox (const Eigen::Vector3d &p, const Eigen::Vector3d &lo, const Eigen::Vector3d &hi)
+{
+  const Eigen::Vector3d centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+  const Eigen::Vector3d d = (p - centre).cwiseAbs () - half;
+  const double outside = d.cwiseMax (0.0).norm ();
+  return outside > 0.0 ? outside : -d.maxCoeff ();
+}
+
+} // namespace
+
+double
+demoSceneError (const Cloud &cloud)
+{
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const auto &q : cloud)
+  {
+    const Eigen::Vector3d p (q.x, q.y, q.z);
+    // The table top is the rectangle z = 0; the box's bottom face lies on it.
+    const Eigen::Vector3d on_table (std::clamp (p.x (), -0.6, 0.6), std::clamp (p.y (), -0.4, 0.4), 0.0);
+    const double d = std::min ({(p - on_table).norm (), distanceToBox (p, kBoxLo, kBoxHi),
+                                std::abs ((p - kBallCentre).norm () - kBallRadius)});
+    if (d < 0.02)
+    {
+      sum += d;
+      ++count;
+    }
+  }
+  return count ? sum / count : 0.0;
+}
+
 Cloud
 demoScene (std::uint64_t seed, std::vector<bool> *is_outlier)
 {
@@ -128,21 +168,18 @@ demoScene (std::uint64_t seed, std::vector<bool> *is_outlier)
   const auto table = static_cast<std::size_t> (1.2 * 0.8 * density);
   for (std::size_t i = 0; i < table; ++i)
     cloud.push_back (pcl::PointXYZ (float (-0.6 + 1.2 * u (rng)), float (-0.4 + 0.8 * u (rng)), 0.0f));
-  const Eigen::Vector3d box_lo (-0.45, -0.2, 0.0), box_hi (-0.15, 0.1, 0.3);
   const auto box = static_cast<std::size_t> (5.0 * 0.09 * density);
   for (std::size_t i = 0; i < box; ++i)
   {
-    pcl::PointXYZ p = onBox (rng, box_lo, box_hi);
+    pcl::PointXYZ p = onBox (rng, kBoxLo, kBoxHi);
     if (p.z > 0.0f)  // the bottom face lies on the table and is not seen
       cloud.push_back (p);
   }
-  const double ball_r = 0.12;
-  const auto ball = static_cast<std::size_t> (4.0 * kPi * ball_r * ball_r * density);
+  const auto ball = static_cast<std::size_t> (4.0 * kPi * kBallRadius * kBallRadius * density);
   for (std::size_t i = 0; i < ball; ++i)
   {
-    pcl::PointXYZ p = onSphere (rng, ball_r);
-    p.x += 0.25f;
-    p.z += float (ball_r);
+    pcl::PointXYZ p = onSphere (rng, kBallRadius);
+    p.getVector3fMap () += kBallCentre.cast<float> ();
     cloud.push_back (p);
   }
   addNoise (cloud, 0.003, rng);

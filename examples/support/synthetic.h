@@ -43,5 +43,11 @@ addUniformOutliers (Cloud &cloud, double fraction, double margin, std::uint64_t 
 Cloud
 demoScene (std::uint64_t seed, std::vector<bool> *is_outlier = nullptr);
 
+/** Mean distance of the points of a cloud to the demo scene's true surfaces (table
+ *  top, box, ball), over the points within 2 cm of them: outliers left in the cloud
+ *  do not count. */
+double
+demoSceneError (const Cloud &cloud);
+
 } // namespace synthetic
 } // namespace pcl_graph_denoise
