@@ -242,6 +242,7 @@ benchOutliers (std::size_t n, double noise, int threads)
 int
 main (int argc, char **argv)
 {
+  std::setvbuf (stdout, nullptr, _IOLBF, 0);  // progress shows as it comes
   std::vector<std::size_t> sizes;
   for (int a = 1; a < argc; ++a)
     sizes.push_back (std::strtoull (argv[a], nullptr, 10));

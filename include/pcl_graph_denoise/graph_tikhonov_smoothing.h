@@ -45,8 +45,8 @@ public:
   inline core::TikhonovSolver
   getSolver () const { return params_.solver; }
 
-  /** \brief Relative residual at which the conjugate gradient stops. Default 1e-6.
-   *  Valid: > 0. */
+  /** \brief Relative residual at which the conjugate gradient stops (relative to the
+   *  cloud's centred coordinates). Default 1e-5. Valid: > 0. */
   inline void
   setTolerance (double tolerance) { params_.tolerance = tolerance; }
 
