@@ -22,6 +22,7 @@
 #include <pcl_graph_denoise/graph_degree_outlier_removal.h>
 
 #include "synthetic.h"
+#include "timing.h"
 
 #include <pcl/filters/radius_outlier_removal.h>
 #include <pcl/filters/statistical_outlier_removal.h>
@@ -43,15 +44,6 @@ using namespace pcl_graph_denoise;
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 
 namespace {
-
-template <typename F>
-double
-seconds (F &&f)
-{
-  const auto start = std::chrono::steady_clock::now ();
-  f ();
-  return std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
-}
 
 core::PointMatrix
 toMatrix (const Cloud &cloud)

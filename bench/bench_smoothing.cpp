@@ -21,6 +21,7 @@
 #include <pcl_graph_denoise/graph_tv_smoothing.h>
 
 #include "synthetic.h"
+#include "timing.h"
 
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/surface/mls.h>
@@ -42,15 +43,6 @@ using namespace pcl_graph_denoise;
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 
 namespace {
-
-template <typename F>
-double
-seconds (F &&f)
-{
-  const auto start = std::chrono::steady_clock::now ();
-  f ();
-  return std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
-}
 
 using Distance = std::function<double (const Eigen::Vector3d &)>;
 

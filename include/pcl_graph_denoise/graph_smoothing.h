@@ -90,6 +90,25 @@ public:
   inline int
   getGraphIterations () const { return graph_iterations_; }
 
+  /** \brief When the solver stops: the conjugate gradient's relative residual
+   *  (Tikhonov, default 1e-5) or the relative primal-dual gap (TV, default 1e-3).
+   *  Valid: > 0. */
+  inline void
+  setTolerance (double tolerance) { tolerance_ = tolerance; }
+
+  /** \brief The tolerance set. */
+  inline double
+  getTolerance () const { return tolerance_; }
+
+  /** \brief Solver iteration cap per pass (Tikhonov default 1000, TV 500); a capped
+   *  solve warns and keeps its last iterate. Valid: >= 1. */
+  inline void
+  setMaximumIterations (int iterations) { max_iterations_ = iterations; }
+
+  /** \brief The iteration cap set. */
+  inline int
+  getMaximumIterations () const { return max_iterations_; }
+
   /** \brief Worker threads; 0 (default) = all hardware threads. The result does not
    *  depend on it. Valid: >= 0. */
   inline void
@@ -117,15 +136,13 @@ public:
   getSolverReport () const { return report_; }
 
 protected:
-  GraphSmoothing () = default;
+  /** \brief The subclass gives its solver's default tolerance and iteration cap. */
+  GraphSmoothing (double tolerance, int max_iterations)
+  : tolerance_ (tolerance), max_iterations_ (max_iterations)
+  {}
 
   void
   applyFilter (PointCloud &output) override;
-
-  /** \brief The subclass's own parameter checks: an empty string, or the name of the
-   *  invalid parameter and what it must be. */
-  virtual std::string
-  checkSolverParameters () const = 0;
 
   /** \brief Denoise the signal f (graph vertex order) with strength gamma. */
   virtual core::Signal3
@@ -141,6 +158,8 @@ protected:
   double gamma_ = 0.0;
   bool automatic_gamma_ = true;
   int graph_iterations_ = 1;
+  double tolerance_;
+  int max_iterations_;
   int num_threads_ = 0;
 
   double used_gamma_ = 0.0;

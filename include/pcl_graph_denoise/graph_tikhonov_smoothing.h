@@ -34,38 +34,22 @@ public:
   using Ptr = std::shared_ptr<GraphTikhonovSmoothing<PointT>>;
   using ConstPtr = std::shared_ptr<const GraphTikhonovSmoothing<PointT>>;
 
-  GraphTikhonovSmoothing () { filter_name_ = "GraphTikhonovSmoothing"; }
+  GraphTikhonovSmoothing ()
+  : GraphSmoothing<PointT> (core::TikhonovParams{}.tolerance, core::TikhonovParams{}.max_iterations)
+  {
+    filter_name_ = "GraphTikhonovSmoothing";
+  }
 
   /** \brief The linear solver: core::TikhonovSolver::CONJUGATE_GRADIENT (default) or
    *  core::TikhonovSolver::CHOLMOD (exact; memory grows quickly with the cloud). */
   inline void
-  setSolver (core::TikhonovSolver solver) { params_.solver = solver; }
+  setSolver (core::TikhonovSolver solver) { solver_ = solver; }
 
   /** \brief The solver set. */
   inline core::TikhonovSolver
-  getSolver () const { return params_.solver; }
-
-  /** \brief Relative residual at which the conjugate gradient stops (relative to the
-   *  cloud's centred coordinates). Default 1e-5. Valid: > 0. */
-  inline void
-  setTolerance (double tolerance) { params_.tolerance = tolerance; }
-
-  /** \brief The tolerance set. */
-  inline double
-  getTolerance () const { return params_.tolerance; }
-
-  /** \brief Conjugate-gradient iteration cap per pass. Default 1000. Valid: >= 1. */
-  inline void
-  setMaximumIterations (int iterations) { params_.max_iterations = iterations; }
-
-  /** \brief The iteration cap set. */
-  inline int
-  getMaximumIterations () const { return params_.max_iterations; }
+  getSolver () const { return solver_; }
 
 protected:
-  std::string
-  checkSolverParameters () const override;
-
   core::Signal3
   smooth (const core::PointGraph &graph, const core::Signal3 &f, double gamma,
           core::SolverReport &report) const override;
@@ -74,7 +58,7 @@ protected:
   automaticGamma (const core::PointGraph &graph, double noise) const override;
 
 private:
-  core::TikhonovParams params_;
+  core::TikhonovSolver solver_ = core::TikhonovSolver::CONJUGATE_GRADIENT;
 };
 
 } // namespace pcl_graph_denoise

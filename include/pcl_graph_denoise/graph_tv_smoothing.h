@@ -35,37 +35,22 @@ public:
   using Ptr = std::shared_ptr<GraphTVSmoothing<PointT>>;
   using ConstPtr = std::shared_ptr<const GraphTVSmoothing<PointT>>;
 
-  GraphTVSmoothing () { filter_name_ = "GraphTVSmoothing"; }
+  GraphTVSmoothing ()
+  : GraphSmoothing<PointT> (core::TotalVariationParams{}.tolerance,
+                            core::TotalVariationParams{}.max_iterations)
+  {
+    filter_name_ = "GraphTVSmoothing";
+  }
 
   /** \brief core::TotalVariationNorm::ISOTROPIC (default) or ANISOTROPIC. */
   inline void
-  setNorm (core::TotalVariationNorm norm) { params_.norm = norm; }
+  setNorm (core::TotalVariationNorm norm) { norm_ = norm; }
 
   /** \brief The norm set. */
   inline core::TotalVariationNorm
-  getNorm () const { return params_.norm; }
-
-  /** \brief Relative duality gap (gap / objective) at which the solver stops.
-   *  Default 1e-3. Valid: > 0. */
-  inline void
-  setTolerance (double tolerance) { params_.tolerance = tolerance; }
-
-  /** \brief The tolerance set. */
-  inline double
-  getTolerance () const { return params_.tolerance; }
-
-  /** \brief Primal-dual iteration cap per pass. Default 500. Valid: >= 1. */
-  inline void
-  setMaximumIterations (int iterations) { params_.max_iterations = iterations; }
-
-  /** \brief The iteration cap set. */
-  inline int
-  getMaximumIterations () const { return params_.max_iterations; }
+  getNorm () const { return norm_; }
 
 protected:
-  std::string
-  checkSolverParameters () const override;
-
   core::Signal3
   smooth (const core::PointGraph &graph, const core::Signal3 &f, double gamma,
           core::SolverReport &report) const override;
@@ -74,7 +59,7 @@ protected:
   automaticGamma (const core::PointGraph &graph, double noise) const override;
 
 private:
-  core::TotalVariationParams params_;
+  core::TotalVariationNorm norm_ = core::TotalVariationNorm::ISOTROPIC;
 };
 
 } // namespace pcl_graph_denoise

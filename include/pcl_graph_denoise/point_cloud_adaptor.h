@@ -12,6 +12,7 @@
 
 #include <pcl_graph_denoise/core/graph.h>
 
+#include <pcl/console/print.h>
 #include <pcl/point_cloud.h>
 #include <pcl/types.h>
 
@@ -60,10 +61,12 @@ isFinitePosition (const PointT &p)
 }
 
 /** \brief Gathers the finite points of `cloud` named by `indices` (which must be in
- *  range, see checkIndices). A repeated index is used once, at its first place. */
+ *  range, see checkIndices). A repeated index is used once, at its first place; when
+ *  `class_name` is given, that is reported with a PCL_WARN in the class's name. */
 template <typename PointT>
 GatheredPoints
-gatherFinitePoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &indices)
+gatherFinitePoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &indices,
+                    const char *class_name = nullptr)
 {
   GatheredPoints out;
   std::vector<std::uint8_t> seen (cloud.size (), 0);
@@ -97,6 +100,9 @@ gatherFinitePoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &in
     out.xyz (r, 1) = static_cast<float> (double (p.y) - out.origin.y ());
     out.xyz (r, 2) = static_cast<float> (double (p.z) - out.origin.z ());
   }
+  if (class_name && out.repeated > 0)
+    PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] %zu repeated indices were used once.\n",
+              class_name, out.repeated);
   return out;
 }
 

@@ -69,8 +69,13 @@ centredNorm (const Signal3 &x, int num_threads)
 
 /** Checks shared by the solvers; throws std::invalid_argument. */
 inline void
-requireSolverInput (const PointGraph &graph, const Signal3 &f, double gamma, int num_threads)
+requireSolverInput (const PointGraph &graph, const Signal3 &f, double gamma, int num_threads,
+                    double tolerance, int max_iterations)
 {
+  if (!(std::isfinite (tolerance) && tolerance > 0.0))
+    throw std::invalid_argument ("tolerance must be finite and > 0");
+  if (max_iterations < 0)
+    throw std::invalid_argument ("max_iterations must be >= 0");
   if (static_cast<std::size_t> (f.rows ()) != graph.numVertices ())
     throw std::invalid_argument ("the signal has the wrong number of rows");
   if (!(std::isfinite (gamma) && gamma >= 0.0))

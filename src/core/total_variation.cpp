@@ -87,11 +87,8 @@ Signal3
 solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
                      const TotalVariationParams &params, SolverReport *report)
 {
-  detail::requireSolverInput (graph, f, gamma, params.num_threads);
-  if (!(std::isfinite (params.tolerance) && params.tolerance > 0.0))
-    throw std::invalid_argument ("tolerance must be finite and > 0");
-  if (params.max_iterations < 0)
-    throw std::invalid_argument ("max_iterations must be >= 0");
+  detail::requireSolverInput (graph, f, gamma, params.num_threads, params.tolerance,
+                              params.max_iterations);
 
   SolverReport local;
   SolverReport &out = report ? *report : local;

@@ -56,10 +56,7 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
     return fail (indices);
   }
 
-  const GatheredPoints gathered = gatherFinitePoints (*input_, *indices_);
-  if (gathered.repeated > 0)
-    PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] %zu repeated indices were used once.\n",
-              name.c_str (), gathered.repeated);
+  const GatheredPoints gathered = gatherFinitePoints (*input_, *indices_, name.c_str ());
 
   // Degree of every gathered row.
   const std::size_t count = gathered.cloud_index.size ();

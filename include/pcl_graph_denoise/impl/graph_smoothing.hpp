@@ -39,8 +39,12 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
   else if (num_threads_ < 0)
     invalid = "number of threads (setNumberOfThreads) = " + std::to_string (num_threads_) +
               ": must be >= 0";
-  else
-    invalid = checkSolverParameters ();
+  else if (!(std::isfinite (tolerance_) && tolerance_ > 0.0))
+    invalid = "tolerance (setTolerance) = " + std::to_string (tolerance_) +
+              ": must be finite and > 0";
+  else if (max_iterations_ < 1)
+    invalid = "maximum iterations (setMaximumIterations) = " + std::to_string (max_iterations_) +
+              ": must be >= 1";
   if (invalid.empty ())
   {
     const std::string bad_index = checkIndices (*input_, *indices_);
@@ -57,10 +61,7 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
   output = *input_;
   used_gamma_ = used_sigma_ = estimated_noise_ = 0.0;
   report_ = core::SolverReport{};
-  const GatheredPoints gathered = gatherFinitePoints (*input_, *indices_);
-  if (gathered.repeated > 0)
-    PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] %zu repeated indices were used once.\n",
-              name.c_str (), gathered.repeated);
+  const GatheredPoints gathered = gatherFinitePoints (*input_, *indices_, name.c_str ());
   const std::size_t count = gathered.cloud_index.size ();
   if (count == 0)
   {

@@ -10,24 +10,14 @@
 namespace pcl_graph_denoise {
 
 template <typename PointT>
-std::string
-GraphTikhonovSmoothing<PointT>::checkSolverParameters () const
-{
-  if (!(std::isfinite (params_.tolerance) && params_.tolerance > 0.0))
-    return "tolerance (setTolerance) = " + std::to_string (params_.tolerance) +
-           ": must be finite and > 0";
-  if (params_.max_iterations < 1)
-    return "maximum iterations (setMaximumIterations) = " +
-           std::to_string (params_.max_iterations) + ": must be >= 1";
-  return {};
-}
-
-template <typename PointT>
 core::Signal3
 GraphTikhonovSmoothing<PointT>::smooth (const core::PointGraph &graph, const core::Signal3 &f,
                                         double gamma, core::SolverReport &report) const
 {
-  core::TikhonovParams params = params_;
+  core::TikhonovParams params;
+  params.solver = solver_;
+  params.tolerance = this->tolerance_;
+  params.max_iterations = this->max_iterations_;
   params.num_threads = this->num_threads_;
   return core::solveTikhonov (graph, f, gamma, params, &report);
 }
