@@ -460,9 +460,12 @@ TEST (SmoothingBadInput, IndicesOutOfRange)
 
 // ---- Real data ----------------------------------------------------------------------
 
-TEST (SmoothingSharedData, OrganisedKinectCloudKeepsItsShape)
+class SmoothingSharedData : public ::testing::TestWithParam<const char *>
+{};
+
+TEST_P (SmoothingSharedData, OrganisedCameraCloudKeepsItsShape)
 {
-  const std::string path = sharedDataPath ("real/pcl/table_scene_mug_stereo_textured.pcd");
+  const std::string path = sharedDataPath (GetParam ());
   PGD_REQUIRE_SHARED_FILE (path);
   auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZRGBA>> ();
   ASSERT_EQ (pcl::io::loadPCDFile (path, *cloud), 0);
@@ -486,3 +489,8 @@ TEST (SmoothingSharedData, OrganisedKinectCloudKeepsItsShape)
   }
   EXPECT_GT (moved, 100000u);
 }
+
+INSTANTIATE_TEST_SUITE_P (
+    Files, SmoothingSharedData,
+    ::testing::Values ("real/pcl/milk_cartoon_all_small_clorox.pcd",  // Kinect
+                       "real/pcl/table_scene_mug_stereo_textured.pcd"));  // stereo
