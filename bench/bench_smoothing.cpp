@@ -13,8 +13,8 @@
  * at search radii of 1, 1.5, 2 and 3 times the mean distance to the 20th neighbour, so
  * that its best radius is shown), and CGAL::jet_smooth_point_set (k = 18, parallel).
  * Also: the time to build the k-NN graph alone, the ratios the targets are stated in,
- * and, for the smaller size, how far the default gamma is from the best gamma of a
- * sweep (0.25x to 4x the default).
+ * and how far the default gamma is from the best gamma of a sweep (0.25x to 4x the
+ * default).
  */
 #include <pcl_graph_denoise/core/graph.h>
 #include <pcl_graph_denoise/graph_tikhonov_smoothing.h>
@@ -106,7 +106,7 @@ sweepRow (const char *name, const Cloud::Ptr &cloud, const Distance &distance)
 }
 
 void
-benchShape (const char *shape, const Cloud::Ptr &cloud, const Distance &distance, bool sweep)
+benchShape (const char *shape, const Cloud::Ptr &cloud, const Distance &distance)
 {
   const int threads = std::max (1u, std::thread::hardware_concurrency ());
   const double input_error = meanDistance (*cloud, distance);
@@ -179,11 +179,8 @@ benchShape (const char *shape, const Cloud::Ptr &cloud, const Distance &distance
   if (t_jet > 0.0)
     std::printf ("; against jet smoothing: Tikhonov %.2fx, TV %.2fx", t_tik / t_jet, t_tv / t_jet);
   std::printf ("\n");
-  if (sweep)
-  {
-    sweepRow<GraphTikhonovSmoothing<pcl::PointXYZ>> ("Tikhonov", cloud, distance);
-    sweepRow<GraphTVSmoothing<pcl::PointXYZ>> ("TV", cloud, distance);
-  }
+  sweepRow<GraphTikhonovSmoothing<pcl::PointXYZ>> ("Tikhonov", cloud, distance);
+  sweepRow<GraphTVSmoothing<pcl::PointXYZ>> ("TV", cloud, distance);
 }
 
 } // namespace
@@ -205,11 +202,10 @@ main (int argc, char **argv)
   };
   for (std::size_t n : sizes)
   {
-    const bool sweep = n <= 200000;
     benchShape ("noisy unit sphere", Cloud::Ptr (new Cloud (synthetic::noisySphere (n, 1.0, 0.01, 41))),
-                to_sphere, sweep);
+                to_sphere);
     benchShape ("noisy cube [-1,1]^3", Cloud::Ptr (new Cloud (synthetic::noisyCube (n, 0.01, 42))),
-                to_cube, sweep);
+                to_cube);
   }
   return 0;
 }
