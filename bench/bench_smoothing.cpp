@@ -44,16 +44,8 @@ using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 
 namespace {
 
-using Distance = std::function<double (const Eigen::Vector3d &)>;
-
-double
-meanDistance (const Cloud &cloud, const Distance &distance)
-{
-  double sum = 0.0;
-  for (const auto &p : cloud)
-    sum += distance (Eigen::Vector3d (p.x, p.y, p.z));
-  return cloud.empty () ? 0.0 : sum / cloud.size ();
-}
+using synthetic::meanDistance;
+using Distance = synthetic::SurfaceDistance;
 
 /** Mean distance to the 20th nearest neighbour, over a sample of points. */
 double
@@ -194,12 +186,8 @@ main (int argc, char **argv)
     sizes.push_back (std::strtoull (argv[a], nullptr, 10));
   if (sizes.empty ())
     sizes = {100000, 1000000};
-  const Distance to_sphere = [] (const Eigen::Vector3d &p) { return std::abs (p.norm () - 1.0); };
-  const Distance to_cube = [] (const Eigen::Vector3d &p) {
-    const Eigen::Vector3d d = p.cwiseAbs ().array () - 1.0;
-    const double outside = d.cwiseMax (0.0).norm ();
-    return outside > 0.0 ? outside : -d.maxCoeff ();
-  };
+  const Distance to_sphere = synthetic::distanceToUnitSphere;
+  const Distance to_cube = synthetic::distanceToCube;
   for (std::size_t n : sizes)
   {
     benchShape ("noisy unit sphere", Cloud::Ptr (new Cloud (synthetic::noisySphere (n, 1.0, 0.01, 41))),

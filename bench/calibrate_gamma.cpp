@@ -59,16 +59,9 @@ main ()
         const synthetic::Cloud cloud = shape == 0   ? synthetic::noisyPlane (n, noise, 5)
                                        : shape == 1 ? synthetic::noisySphere (n, 1.0, noise, 5)
                                                     : synthetic::noisyCube (n, noise, 5);
-        const std::function<double (const Eigen::RowVector3d &)> distance =
-            [shape] (const Eigen::RowVector3d &p) {
-              if (shape == 0)
-                return std::abs (p (2));
-              if (shape == 1)
-                return std::abs (p.norm () - 1.0);
-              const Eigen::RowVector3d d = p.cwiseAbs ().array () - 1.0;
-              const double outside = d.cwiseMax (0.0).norm ();
-              return outside > 0.0 ? outside : -d.maxCoeff ();
-            };
+        const synthetic::SurfaceDistance distance = shape == 0   ? synthetic::distanceToPlane
+                                                    : shape == 1 ? synthetic::distanceToUnitSphere
+                                                                 : synthetic::distanceToCube;
         PointMatrix points (cloud.size (), 3);
         for (std::size_t i = 0; i < cloud.size (); ++i)
           points.row (i) = cloud[i].getVector3fMap ().transpose ();
@@ -81,7 +74,7 @@ main ()
         const auto error = [&] (const Signal3 &x) {
           double sum = 0.0;
           for (Eigen::Index i = 0; i < x.rows (); ++i)
-            sum += distance (x.row (i));
+            sum += distance (x.row (i).transpose ());
           return sum / x.rows ();
         };
         double degree = 0.0, root = 0.0;

@@ -33,16 +33,8 @@ using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 
 namespace {
 
-using Distance = std::function<double (const Eigen::Vector3d &)>;
-
-double
-meanDistance (const Cloud &cloud, const Distance &distance)
-{
-  double sum = 0.0;
-  for (const auto &p : cloud)
-    sum += distance (Eigen::Vector3d (p.x, p.y, p.z));
-  return cloud.empty () ? 0.0 : sum / cloud.size ();
-}
+using synthetic::meanDistance;
+using Distance = synthetic::SurfaceDistance;
 
 struct Shape
 {
@@ -82,16 +74,12 @@ figure3 (bool quick, const std::string &dir)
 {
   const std::vector<Shape> shapes = {
       {"plane", [] (double s, std::uint64_t seed) { return synthetic::noisyPlane (10000, s, seed); },
-       [] (const Eigen::Vector3d &p) { return std::abs (p.z ()); }},
+       synthetic::distanceToPlane},
       {"sphere",
        [] (double s, std::uint64_t seed) { return synthetic::noisySphere (10000, 1.0, s, seed); },
-       [] (const Eigen::Vector3d &p) { return std::abs (p.norm () - 1.0); }},
+       synthetic::distanceToUnitSphere},
       {"cube", [] (double s, std::uint64_t seed) { return synthetic::noisyCube (10000, s, seed); },
-       [] (const Eigen::Vector3d &p) {
-         const Eigen::Vector3d d = p.cwiseAbs ().array () - 1.0;
-         const double outside = d.cwiseMax (0.0).norm ();
-         return outside > 0.0 ? outside : -d.maxCoeff ();
-       }}};
+       synthetic::distanceToCube}};
   std::vector<double> levels;
   if (quick)
     levels = {0.001, 0.01, 0.1};

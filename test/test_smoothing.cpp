@@ -27,15 +27,11 @@ using namespace pcl_graph_denoise::testing;
 
 namespace {
 
-using Distance = std::function<double (const Eigen::Vector3d &)>;
+using Distance = synthetic::SurfaceDistance;
 
-const Distance kToPlane = [] (const Eigen::Vector3d &p) { return std::abs (p.z ()); };
-const Distance kToSphere = [] (const Eigen::Vector3d &p) { return std::abs (p.norm () - 1.0); };
-const Distance kToCube = [] (const Eigen::Vector3d &p) {
-  const Eigen::Vector3d d = p.cwiseAbs ().array () - 1.0;
-  const double outside = d.cwiseMax (0.0).norm ();
-  return outside > 0.0 ? outside : -d.maxCoeff ();
-};
+const Distance kToPlane = synthetic::distanceToPlane;
+const Distance kToSphere = synthetic::distanceToUnitSphere;
+const Distance kToCube = synthetic::distanceToCube;
 
 template <typename PointT>
 double

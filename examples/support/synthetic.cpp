@@ -136,6 +136,33 @@ distanceToBox (const Eigen::Vector3d &p, const Eigen::Vector3d &lo, const Eigen:
 } // namespace
 
 double
+distanceToPlane (const Eigen::Vector3d &p)
+{
+  return std::abs (p.z ());
+}
+
+double
+distanceToUnitSphere (const Eigen::Vector3d &p)
+{
+  return std::abs (p.norm () - 1.0);
+}
+
+double
+distanceToCube (const Eigen::Vector3d &p)
+{
+  return distanceToBox (p, Eigen::Vector3d::Constant (-1.0), Eigen::Vector3d::Constant (1.0));
+}
+
+double
+meanDistance (const Cloud &cloud, const SurfaceDistance &distance)
+{
+  double sum = 0.0;
+  for (const auto &p : cloud)
+    sum += distance (Eigen::Vector3d (p.x, p.y, p.z));
+  return cloud.empty () ? 0.0 : sum / double (cloud.size ());
+}
+
+double
 demoSceneError (const Cloud &cloud)
 {
   double sum = 0.0;

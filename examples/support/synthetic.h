@@ -11,6 +11,7 @@
 #include <pcl/point_types.h>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace pcl_graph_denoise {
@@ -42,6 +43,22 @@ addUniformOutliers (Cloud &cloud, double fraction, double margin, std::uint64_t 
  *  `is_outlier` receives the ground truth when not null. */
 Cloud
 demoScene (std::uint64_t seed, std::vector<bool> *is_outlier = nullptr);
+
+/** Exact distances to the true surfaces of noisyPlane, noisySphere (radius 1) and
+ *  noisyCube. */
+double
+distanceToPlane (const Eigen::Vector3d &p);
+double
+distanceToUnitSphere (const Eigen::Vector3d &p);
+double
+distanceToCube (const Eigen::Vector3d &p);
+
+/** A distance to a known surface. */
+using SurfaceDistance = std::function<double (const Eigen::Vector3d &)>;
+
+/** Mean distance of the points of a cloud to a known surface. */
+double
+meanDistance (const Cloud &cloud, const SurfaceDistance &distance);
 
 /** Mean distance of the points of a cloud to the demo scene's true surfaces (table
  *  top, box, ball), over the points within 2 cm of them: outliers left in the cloud
