@@ -356,6 +356,7 @@ TEST (SmoothingQuality, ExplicitParametersAreUsed)
   EXPECT_EQ (filter.getUsedGamma (), 2.5);
   EXPECT_EQ (filter.getUsedSigma (), 0.05);
   EXPECT_FALSE (filter.getAutomaticGamma ());
+  EXPECT_EQ (filter.getEstimatedNoise (), 0.0);  // only the data-derived gamma needs it
   filter.setSolver (core::TikhonovSolver::CONJUGATE_GRADIENT);
   filter.setTolerance (1e-10);
   const auto iterative = run (filter, cloud);

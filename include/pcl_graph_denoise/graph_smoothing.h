@@ -127,7 +127,8 @@ public:
   getUsedSigma () const { return used_sigma_; }
 
   /** \brief Noise level (standard deviation along the normal, cloud units) estimated
-   *  by the first pass of the last filter() call. */
+   *  by the first pass of the last filter() call; 0 when gamma was set explicitly (the
+   *  estimate only serves the data-derived gamma). */
   inline double
   getEstimatedNoise () const { return estimated_noise_; }
 

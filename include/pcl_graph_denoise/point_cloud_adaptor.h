@@ -106,15 +106,4 @@ gatherFinitePoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &in
   return out;
 }
 
-/** \brief A vertex-indexed value of a graph, moved to the rows of the gathered matrix. */
-template <typename T>
-std::vector<T>
-toGatheredOrder (const core::PointGraph &graph, const std::vector<T> &by_vertex)
-{
-  std::vector<T> by_row (by_vertex.size ());
-  for (std::size_t v = 0; v < by_vertex.size (); ++v)
-    by_row[graph.order[v]] = by_vertex[v];
-  return by_row;
-}
-
 } // namespace pcl_graph_denoise

@@ -88,11 +88,16 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
       core::Signal3 f (static_cast<Eigen::Index> (count), 3);
       for (std::size_t v = 0; v < count; ++v)
         f.row (v) = position.row (graph.order[v]);
-      const double noise = core::estimateNoiseLevel (graph, f, num_threads_);
-      if (pass == 0)
-        estimated_noise_ = noise;
       used_sigma_ = graph.sigma;
-      used_gamma_ = automatic_gamma_ ? automaticGamma (graph, noise) : gamma_;
+      used_gamma_ = gamma_;
+      if (automatic_gamma_)
+      {
+        // Re-estimated on each pass: the noise left after the previous one.
+        const double noise = core::estimateNoiseLevel (graph, f, num_threads_);
+        if (pass == 0)
+          estimated_noise_ = noise;
+        used_gamma_ = automaticGamma (graph, noise);
+      }
       const core::Signal3 x = smooth (graph, f, used_gamma_, report_);
       if (!report_.converged)
         PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] The solver stopped after %d iterations "
