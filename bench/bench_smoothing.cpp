@@ -23,13 +23,7 @@
 #include "synthetic.h"
 #include "timing.h"
 
-#include <pcl/kdtree/kdtree_flann.h>
-#include <pcl/surface/mls.h>
-
-#ifdef PGD_HAVE_CGAL
-#include <CGAL/Simple_cartesian.h>
-#include <CGAL/jet_smooth_point_set.h>
-#endif
+#include "peers.h"
 
 #include <chrono>
 #include <cmath>
@@ -46,24 +40,6 @@ namespace {
 
 using synthetic::meanDistance;
 using Distance = synthetic::SurfaceDistance;
-
-/** Mean distance to the 20th nearest neighbour, over a sample of points. */
-double
-twentiethNeighbourDistance (const Cloud::Ptr &cloud)
-{
-  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
-  tree.setInputCloud (cloud);
-  pcl::Indices idx;
-  std::vector<float> d2;
-  double sum = 0.0;
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < cloud->size (); i += 97, ++count)
-  {
-    tree.nearestKSearch ((*cloud)[i], 21, idx, d2);
-    sum += std::sqrt (d2.back ());
-  }
-  return sum / count;
-}
 
 void
 row (const char *method, double time, double error, double input_error)
@@ -121,17 +97,11 @@ benchShape (const char *shape, const Cloud::Ptr &cloud, const Distance &distance
   const double t_tv = seconds ([&] { tv.filter (out); });
   row ("GraphTVSmoothing (defaults)", t_tv, meanDistance (out, distance), input_error);
 
-  const double spacing20 = twentiethNeighbourDistance (cloud);
+  const double spacing20 = peers::meanKthNeighbourDistance (*cloud, 20);
   double best_mls_error = 1e300, best_mls_time = 0.0;
   for (double factor : {1.0, 1.5, 2.0, 3.0})
   {
-    pcl::MovingLeastSquares<pcl::PointXYZ, pcl::PointXYZ> mls;
-    mls.setInputCloud (cloud);
-    mls.setPolynomialOrder (2);
-    mls.setSearchRadius (factor * spacing20);
-    mls.setNumberOfThreads (threads);
-    mls.setComputeNormals (false);
-    const double t = seconds ([&] { mls.process (out); });
+    const double t = seconds ([&] { out = peers::movingLeastSquares (*cloud, factor * spacing20); });
     const double error = meanDistance (out, distance);
     char label[96];
     std::snprintf (label, sizeof (label), "pcl::MovingLeastSquares (order 2, r = %.1f d20)", factor);
@@ -140,37 +110,17 @@ benchShape (const char *shape, const Cloud::Ptr &cloud, const Distance &distance
       best_mls_error = error, best_mls_time = t;
   }
 
-#ifdef PGD_HAVE_CGAL
-  using Kernel = CGAL::Simple_cartesian<double>;
-  std::vector<Kernel::Point_3> cgal_points;
-  cgal_points.reserve (cloud->size ());
-  for (const auto &p : *cloud)
-    cgal_points.emplace_back (p.x, p.y, p.z);
-  const double t_jet = seconds ([&] {
-#ifdef CGAL_LINKED_WITH_TBB
-    CGAL::jet_smooth_point_set<CGAL::Parallel_tag> (cgal_points, 18);
-#else
-    CGAL::jet_smooth_point_set<CGAL::Sequential_tag> (cgal_points, 18);
-#endif
-  });
   Cloud jet;
-  for (const auto &p : cgal_points)
-    jet.push_back (pcl::PointXYZ (float (p.x ()), float (p.y ()), float (p.z ())));
+  const double t_jet = seconds ([&] { jet = peers::jetSmooth (*cloud, 18); });
   const double jet_error = meanDistance (jet, distance);
   row ("CGAL::jet_smooth_point_set (k = 18)", t_jet, jet_error, input_error);
-#else
-  const double t_jet = 0.0;
-  std::printf ("  CGAL not found at build time: jet smoothing not measured\n");
-#endif
 
   std::printf ("  k-NN graph alone %.3f s; Tikhonov %.2fx the graph build (target <= 2), TV "
                "%.2fx (target <= 6)\n",
                t_graph, t_tik / t_graph, t_tv / t_graph);
   std::printf ("  time against MLS at its most accurate radius: Tikhonov %.2fx, TV %.2fx",
                t_tik / best_mls_time, t_tv / best_mls_time);
-  if (t_jet > 0.0)
-    std::printf ("; against jet smoothing: Tikhonov %.2fx, TV %.2fx", t_tik / t_jet, t_tv / t_jet);
-  std::printf ("\n");
+  std::printf ("; against jet smoothing: Tikhonov %.2fx, TV %.2fx\n", t_tik / t_jet, t_tv / t_jet);
   sweepRow<GraphTikhonovSmoothing<pcl::PointXYZ>> ("Tikhonov", cloud, distance);
   sweepRow<GraphTVSmoothing<pcl::PointXYZ>> ("TV", cloud, distance);
 }

@@ -1,0 +1,143 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ *
+ * The methods every section of the evaluation compares, in one place.
+ */
+#include "evaluate.h"
+
+#include <pcl_graph_denoise/graph_tikhonov_smoothing.h>
+#include <pcl_graph_denoise/graph_tv_smoothing.h>
+
+#include "peers.h"
+#include "timing.h"
+
+#include <cmath>
+#include <limits>
+
+namespace pcl_graph_denoise {
+namespace evaluation {
+
+namespace {
+
+template <typename Setting>
+MethodResult
+bestOf (const std::string &method, const std::vector<Setting> &settings,
+        const std::function<Cloud (const Setting &)> &run,
+        const std::function<std::string (const Setting &)> &label,
+        const std::function<double (const Cloud &)> &error)
+{
+  MethodResult best;
+  best.method = method;
+  best.error = std::numeric_limits<double>::infinity ();
+  for (const auto &setting : settings)
+  {
+    Cloud out;
+    const double t = seconds ([&] { out = run (setting); });
+    const double e = error (out);
+    if (e < best.error)
+    {
+      best.setting = label (setting);
+      best.error = e;
+      best.seconds = t;
+      best.output = std::move (out);
+    }
+  }
+  return best;
+}
+
+template <typename Filter>
+void
+ours (const std::string &name, const Cloud::Ptr &noisy, const std::function<double (const Cloud &)> &error,
+      std::vector<MethodResult> &results)
+{
+  Filter filter;
+  filter.setInputCloud (noisy);
+  MethodResult by_default;
+  by_default.method = name + " (defaults)";
+  by_default.seconds = seconds ([&] { filter.filter (by_default.output); });
+  by_default.error = error (by_default.output);
+  const double gamma = filter.getUsedGamma ();
+  results.push_back (by_default);
+  results.push_back (bestOf<double> (
+      name + " (best γ)", {0.25, 0.5, 1.0, 2.0, 4.0},
+      [&] (const double &f) {
+        filter.setGamma (f * gamma);
+        Cloud out;
+        filter.filter (out);
+        return out;
+      },
+      [] (const double &f) {
+        char label[16];
+        std::snprintf (label, sizeof (label), "%gx", f);
+        return std::string (label);
+      },
+      error));
+}
+
+} // namespace
+
+const std::vector<std::string> &
+methodNames ()
+{
+  static const std::vector<std::string> names = {
+      "noisy input",       "Tikhonov (defaults)", "Tikhonov (best γ)",  "TV (defaults)",
+      "TV (best γ)",       "MLS (best radius)",   "jet (best k)",       "bilateral (best k)",
+      "WLOP"};
+  return names;
+}
+
+std::size_t
+firstPeer ()
+{
+  return 5;
+}
+
+std::vector<MethodResult>
+runMethods (const Cloud::Ptr &noisy, const std::function<double (const Cloud &)> &error,
+            const MethodOptions &options)
+{
+  std::vector<MethodResult> results;
+  MethodResult input;
+  input.method = "noisy input";
+  input.output = *noisy;
+  input.error = error (input.output);
+  results.push_back (input);
+  ours<GraphTikhonovSmoothing<pcl::PointXYZ>> ("Tikhonov", noisy, error, results);
+  ours<GraphTVSmoothing<pcl::PointXYZ>> ("TV", noisy, error, results);
+
+  const double d20 = peers::meanKthNeighbourDistance (*noisy, 20);
+  const auto label_k = [] (const unsigned &k) { return "k=" + std::to_string (k); };
+  results.push_back (bestOf<double> (
+      "MLS (best radius)", {1.0, 1.5, 2.0, 3.0},
+      [&] (const double &f) { return peers::movingLeastSquares (*noisy, f * d20); },
+      [] (const double &f) {
+        char label[16];
+        std::snprintf (label, sizeof (label), "r=%gd20", f);
+        return std::string (label);
+      },
+      error));
+  results.push_back (bestOf<unsigned> (
+      "jet (best k)", {18, 36, 72}, [&] (const unsigned &k) { return peers::jetSmooth (*noisy, k); },
+      label_k, error));
+  results.push_back (bestOf<unsigned> (
+      "bilateral (best k)", options.bilateral_k,
+      [&] (const unsigned &k) { return peers::bilateralSmooth (*noisy, k, 25.0, 3); }, label_k, error));
+  MethodResult wlop;
+  wlop.method = "WLOP";
+  if (options.wlop)
+  {
+    wlop.seconds = seconds ([&] { wlop.output = peers::wlop (*noisy, 0.0); });
+    wlop.error = error (wlop.output);
+  }
+  else
+  {
+    wlop.setting = "not run";
+    wlop.error = wlop.seconds = std::nan ("");
+  }
+  results.push_back (wlop);
+  return results;
+}
+
+} // namespace evaluation
+} // namespace pcl_graph_denoise
