@@ -5,9 +5,12 @@
  * The numerical core against brute force on seeded random clouds.
  */
 #include <pcl_graph_denoise/core/graph.h>
+#include <pcl_graph_denoise/core/normals.h>
 #include <pcl_graph_denoise/core/operators.h>
 
 #include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -431,4 +434,54 @@ TEST_F (Operators, RejectSignalsOfTheWrongSize)
   Signal3 y;
   EXPECT_THROW (applyLaplacian (g, Signal3::Zero (10, 3), y), std::invalid_argument);
   EXPECT_THROW (applyGradientAdjoint (g, Signal3::Zero (10, 3), y), std::invalid_argument);
+}
+
+TEST (Normals, PlaneNormalsAndTheirUse)
+{
+  // A tilted plane: every normal is +-n.
+  std::mt19937 rng (61);
+  std::uniform_real_distribution<float> u (-1.0f, 1.0f);
+  const Eigen::Vector3d n = Eigen::Vector3d (1.0, 2.0, 3.0).normalized ();
+  const Eigen::Vector3d a = n.unitOrthogonal (), b = n.cross (a);
+  PointMatrix plane (2000, 3);
+  for (Eigen::Index i = 0; i < plane.rows (); ++i)
+    plane.row (i) = (u (rng) * a + u (rng) * b).cast<float> ().transpose ();
+  const PointGraph graph = buildKnnGraph (plane);
+  Signal3 f (plane.rows (), 3);
+  for (Eigen::Index v = 0; v < plane.rows (); ++v)
+    f.row (v) = plane.row (graph.order[v]).cast<double> ();
+  const Signal3 normals = estimateNormals (graph, f);
+  for (Eigen::Index v = 0; v < f.rows (); ++v)
+  {
+    ASSERT_NEAR (normals.row (v).norm (), 1.0, 1e-9);
+    ASSERT_NEAR (std::abs (normals.row (v).dot (n.transpose ())), 1.0, 1e-5);
+  }
+  EXPECT_EQ (estimateNormals (graph, f, 1), estimateNormals (graph, f, 2));
+
+  // The displacement keeps only its normal part.
+  Signal3 x = f;
+  x.col (0).array () += 0.1;
+  const Signal3 moved = normalDisplacement (f, x, normals);
+  for (Eigen::Index v = 0; v < f.rows (); ++v)
+  {
+    const Eigen::Vector3d d = (moved.row (v) - f.row (v)).transpose ();
+    ASSERT_NEAR (d.cross (n).norm (), 0.0, 1e-5);  // along n
+    ASSERT_NEAR (d.dot (n), 0.1 * n.x (), 1e-5);    // by the normal part of (0.1, 0, 0)
+  }
+  // A zero normal keeps the point; sizes must agree.
+  const Signal3 none = Signal3::Zero (f.rows (), 3);
+  EXPECT_EQ (normalDisplacement (f, x, none), f);
+  EXPECT_THROW (normalDisplacement (f, x.topRows (3), normals), std::invalid_argument);
+  EXPECT_THROW (estimateNormals (graph, f.topRows (3)), std::invalid_argument);
+}
+
+TEST (Normals, TooFewPointsGiveZeroNormals)
+{
+  PointMatrix two (2, 3);
+  two << 0, 0, 0, 1, 0, 0;
+  const PointGraph graph = buildKnnGraph (two);
+  Signal3 f (2, 3);
+  for (Eigen::Index v = 0; v < 2; ++v)
+    f.row (v) = two.row (graph.order[v]).cast<double> ();
+  EXPECT_EQ (estimateNormals (graph, f), Signal3::Zero (2, 3));
 }

@@ -273,7 +273,16 @@ TEST (SmoothingQuality, UnitInvariantDefaults)
     ASSERT_LT (((*d)[i].getVector3fMap () / 1000.0f - (*c)[i].getVector3fMap ()).norm (), 1e-4);
 }
 
-TEST (SmoothingQuality, TotalVariationKeepsCubeEdgesSharperThanTikhonov)
+/** The paper's filters: both refinements off. */
+template <typename Filter>
+void
+paperFilter (Filter &filter)
+{
+  filter.setNormalDisplacement (false);
+  filter.setShrinkageCorrection (false);
+}
+
+TEST (SmoothingQuality, PaperTotalVariationKeepsCubeEdgesSharperThanPaperTikhonov)
 {
   auto cloud = std::make_shared<synthetic::Cloud> (synthetic::noisyCube (30000, 0.01, 35));
   // Points within 0.1 of an edge of the cube: two coordinates near +-1.
@@ -285,13 +294,93 @@ TEST (SmoothingQuality, TotalVariationKeepsCubeEdgesSharperThanTikhonov)
   };
   GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
   GraphTVSmoothing<pcl::PointXYZ> tv;
+  paperFilter (tikhonov);
+  paperFilter (tv);
   const double t = meanDistance (*run (tikhonov, cloud), kToCube, near_edge);
   const double v = meanDistance (*run (tv, cloud), kToCube, near_edge);
-  std::printf ("cube edges: Tikhonov %.5f, TV %.5f\n", t, v);
+  std::printf ("cube edges, the paper's filters: Tikhonov %.5f, TV %.5f\n", t, v);
   EXPECT_LT (v, t);
+  // The default refinements (normal displacement, shrinkage correction) bring both
+  // closer to the edges than the paper's TV.
+  GraphTikhonovSmoothing<pcl::PointXYZ> refined_tikhonov;
+  GraphTVSmoothing<pcl::PointXYZ> refined_tv;
+  const double rt = meanDistance (*run (refined_tikhonov, cloud), kToCube, near_edge);
+  const double rv = meanDistance (*run (refined_tv, cloud), kToCube, near_edge);
+  std::printf ("cube edges, defaults: Tikhonov %.5f, TV %.5f\n", rt, rv);
+  EXPECT_LT (rt, 0.85 * v);
+  EXPECT_LT (rv, 0.85 * v);
 }
 
-TEST (SmoothingQuality, TotalVariationKeepsAStepSharperThanTikhonov)
+TEST (SmoothingQuality, NormalDisplacementMovesPointsAcrossThePlaneOnly)
+{
+  auto plane = std::make_shared<synthetic::Cloud> (synthetic::noisyPlane (5000, 0.01, 51));
+  GraphTikhonovSmoothing<pcl::PointXYZ> along_normal, free;
+  free.setNormalDisplacement (false);
+  EXPECT_TRUE (along_normal.getNormalDisplacement ());
+  EXPECT_FALSE (free.getNormalDisplacement ());
+  const auto a = run (along_normal, plane);
+  const auto b = run (free, plane);
+  double tangential_a = 0.0, tangential_b = 0.0;
+  for (std::size_t i = 0; i < plane->size (); ++i)
+  {
+    tangential_a += ((*a)[i].getVector3fMap () - (*plane)[i].getVector3fMap ()).head<2> ().norm ();
+    tangential_b += ((*b)[i].getVector3fMap () - (*plane)[i].getVector3fMap ()).head<2> ().norm ();
+  }
+  tangential_a /= plane->size ();
+  tangential_b /= plane->size ();
+  // Free displacement slides points along the plane (and pulls the border in); along
+  // the normal they move by a small fraction of that (the fitted normals tilt by the
+  // residual noise).
+  std::printf ("mean tangential motion: along the normal %.6f, free %.6f\n", tangential_a, tangential_b);
+  EXPECT_LT (tangential_a, 0.1 * tangential_b);
+  EXPECT_LT (meanDistance (*a, kToPlane), 0.5 * meanDistance (*plane, kToPlane));
+}
+
+TEST (SmoothingQuality, ShrinkageCorrectionKeepsTheSphereRadius)
+{
+  auto sphere = std::make_shared<synthetic::Cloud> (synthetic::noisySphere (10000, 1.0, 0.01, 52));
+  const auto mean_radius = [] (const synthetic::Cloud &cloud) {
+    double r = 0.0;
+    for (const auto &p : cloud)
+      r += p.getVector3fMap ().cast<double> ().norm ();
+    return r / cloud.size ();
+  };
+  GraphTikhonovSmoothing<pcl::PointXYZ> corrected, plain;
+  plain.setShrinkageCorrection (false);
+  EXPECT_TRUE (corrected.getShrinkageCorrection ());
+  EXPECT_FALSE (plain.getShrinkageCorrection ());
+  plain.setGamma (4.0);  // strong smoothing: the paper's filter visibly shrinks
+  corrected.setGamma (4.0);
+  const double shrink_plain = 1.0 - mean_radius (*run (plain, sphere));
+  const double shrink_corrected = 1.0 - mean_radius (*run (corrected, sphere));
+  std::printf ("sphere shrinkage at gamma 4: plain %.5f, corrected %.5f\n", shrink_plain, shrink_corrected);
+  EXPECT_GT (shrink_plain, 0.003);
+  EXPECT_LT (std::abs (shrink_corrected), 0.25 * shrink_plain);
+}
+
+TEST (SmoothingQuality, PaperFilterIsTheExactTikhonovSolve)
+{
+  auto sphere = std::make_shared<synthetic::Cloud> (synthetic::noisySphere (3000, 1.0, 0.02, 53));
+  GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
+  paperFilter (tikhonov);
+  tikhonov.setGamma (0.5);
+  tikhonov.setTolerance (1e-10);
+  const auto out = run (tikhonov, sphere);
+  core::PointMatrix points (sphere->size (), 3);
+  for (std::size_t i = 0; i < sphere->size (); ++i)
+    points.row (i) = (*sphere)[i].getVector3fMap ().transpose ();
+  const core::PointGraph graph = core::buildKnnGraph (points);
+  core::Signal3 f (points.rows (), 3);
+  for (Eigen::Index v = 0; v < points.rows (); ++v)
+    f.row (v) = points.row (graph.order[v]).cast<double> ();
+  core::TikhonovParams params;
+  params.tolerance = 1e-10;
+  const core::Signal3 x = core::solveTikhonov (graph, f, 0.5, params);
+  for (Eigen::Index v = 0; v < points.rows (); ++v)
+    ASSERT_LT (((*out)[graph.order[v]].getVector3fMap ().cast<double> () - x.row (v).transpose ()).norm (), 1e-5);
+}
+
+TEST (SmoothingQuality, PaperTotalVariationKeepsAStepSharperThanPaperTikhonov)
 {
   // A step: the floor z = 0 for x < 0, the riser x = 0 up to z = 0.3, the top z = 0.3
   // for x > 0, y in [-1, 1], sampled uniformly by area, 0.5% noise.
@@ -322,6 +411,8 @@ TEST (SmoothingQuality, TotalVariationKeepsAStepSharperThanTikhonov)
   };
   GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
   GraphTVSmoothing<pcl::PointXYZ> tv;
+  paperFilter (tikhonov);
+  paperFilter (tv);
   const double t = meanDistance (*run (tikhonov, cloud), to_step, near_edges);
   const double v = meanDistance (*run (tv, cloud), to_step, near_edges);
   std::printf ("step edges: noisy %.5f, Tikhonov %.5f, TV %.5f\n",

@@ -14,7 +14,7 @@ namespace pcl_graph_denoise {
  *  spectral filter 1 / (1 + 2 gamma lambda).
  *
  * gamma is unitless (L's weights are). Its default is derived from the data:
- * gamma = C (noise / spacing)^2 / mean degree, with the noise level estimated from local
+ * gamma = C (noise / spacing)^1.5 / mean degree, with the noise level estimated from local
  * plane fits (see core::defaultTikhonovGamma). The default solver is a preconditioned
  * conjugate gradient; CHOLMOD's exact sparse Cholesky is available for small and
  * medium clouds. See GraphSmoothing for the parameters and the output contract.

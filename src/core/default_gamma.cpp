@@ -14,8 +14,9 @@ namespace core {
 namespace {
 
 // Calibrated on noisy spheres and cubes (20k and 100k points, noise 0.5%, 1% and 2% of
-// the size) for the lowest geometric-mean distance to the true surface; see
-// docs/defaults.md for the sweep and how far each rule lands from the best gamma.
+// the size) for the lowest geometric-mean distance to the true surface, with
+// bench/calibrate_gamma (which prints the sweep and how far each rule lands from the
+// best gamma).
 constexpr double kTikhonovC = 20.0;
 constexpr double kTikhonovExponent = 1.5;
 constexpr double kTotalVariationC = 10.0;

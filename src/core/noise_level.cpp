@@ -4,6 +4,7 @@
  */
 #include <pcl_graph_denoise/core/noise_level.h>
 
+#include "two_ring.h"
 #include "parallel.h"
 
 #include <Eigen/Eigenvalues>
@@ -35,30 +36,11 @@ estimateNoiseLevel (const PointGraph &graph, const Signal3 &points, int num_thre
       const std::size_t i = sample * stride;
       // The vertex, its neighbours and theirs: wide enough that noise comparable to
       // the spacing does not hide in the choice of the neighbourhood.
-      ring.clear ();
-      ring.push_back (static_cast<VertexIndex> (i));
-      for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
-      {
-        const VertexIndex j = graph.col[e];
-        ring.push_back (j);
-        for (std::uint64_t f = graph.row_ptr[j]; f < graph.row_ptr[j + 1]; ++f)
-          ring.push_back (graph.col[f]);
-      }
-      std::sort (ring.begin (), ring.end ());
-      ring.erase (std::unique (ring.begin (), ring.end ()), ring.end ());
+      detail::twoRing (graph, i, ring);
       const double m = double (ring.size ());
       if (m < 5.0)
         continue;  // a plane through fewer than five points says nothing of the noise
-      Eigen::Vector3d mean = Eigen::Vector3d::Zero ();
-      Eigen::Matrix3d second = Eigen::Matrix3d::Zero ();
-      for (const VertexIndex j : ring)
-      {
-        const Eigen::Vector3d d = (points.row (j) - points.row (i)).transpose ();
-        mean += d;
-        second += d * d.transpose ();
-      }
-      mean /= m;
-      const Eigen::Matrix3d covariance = second / m - mean * mean.transpose ();
+      const Eigen::Matrix3d covariance = detail::ringCovariance (points, ring, i);
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
       eig.computeDirect (covariance, Eigen::EigenvaluesOnly);
       const double smallest = std::max (0.0, eig.eigenvalues () (0));

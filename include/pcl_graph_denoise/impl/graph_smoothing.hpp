@@ -5,11 +5,13 @@
 #pragma once
 
 #include <pcl_graph_denoise/core/noise_level.h>
+#include <pcl_graph_denoise/core/normals.h>
 #include <pcl_graph_denoise/graph_smoothing.h>
 #include <pcl_graph_denoise/point_cloud_adaptor.h>
 
 #include <pcl/console/print.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <string>
@@ -98,11 +100,26 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
           estimated_noise_ = noise;
         used_gamma_ = automaticGamma (graph, noise);
       }
-      const core::Signal3 x = smooth (graph, f, used_gamma_, report_);
-      if (!report_.converged)
-        PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] The solver stopped after %d iterations "
-                  "at a residual of %g, above its tolerance; its last iterate is used.\n",
-                  name.c_str (), report_.iterations, report_.residual);
+      // Each solve warns on its own when it stops before its tolerance; the report
+      // sums the iterations of the pass and keeps the worst residual.
+      report_ = core::SolverReport{};
+      report_.converged = true;
+      const auto solve = [&] (const core::Signal3 &signal) {
+        core::SolverReport report;
+        core::Signal3 x = smooth (graph, signal, used_gamma_, report);
+        if (!report.converged)
+          PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] The solver stopped after %d iterations "
+                    "at a residual of %g, above its tolerance; its last iterate is used.\n",
+                    name.c_str (), report.iterations, report.residual);
+        report_.iterations += report.iterations;
+        report_.residual = std::max (report_.residual, report.residual);
+        report_.converged = report_.converged && report.converged;
+        return x;
+      };
+      const core::Signal3 smoothed = solve (f);
+      core::Signal3 x = shrinkage_correction_ ? core::Signal3 (2.0 * smoothed - solve (smoothed)) : smoothed;
+      if (normal_displacement_)
+        x = core::normalDisplacement (f, x, core::estimateNormals (graph, smoothed, num_threads_));
       for (std::size_t v = 0; v < count; ++v)
         position.row (graph.order[v]) = x.row (v);
     }
