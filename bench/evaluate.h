@@ -24,6 +24,8 @@ struct Options
   bool quick = false;
   std::string out = ".";   ///< where the tables (.md, .dat) and files are written
   std::string data;        ///< the shared data folder (../shared/data)
+  std::vector<std::size_t> sizes;  ///< pugan: cloud sizes (empty = the section's own)
+  bool wlop = false;               ///< pugan: also run WLOP (slow: ~16 s per 10,000 points)
 };
 
 int

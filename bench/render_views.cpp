@@ -42,7 +42,6 @@
 #include <pcl/visualization/point_cloud_color_handlers.h>
 
 #include <vtkCamera.h>
-#include <vtkCoordinate.h>
 #include <vtkImageData.h>
 #include <vtkLookupTable.h>
 #include <vtkPNGReader.h>
@@ -58,9 +57,9 @@
 #include <Eigen/Core>
 
 #include <algorithm>
-#include <array>
 #include <cctype>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -68,9 +67,11 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 // Last: Xlib defines macros (Status, Success, None, ...) that clash with the headers above.
@@ -137,7 +138,6 @@ struct View
 {
   std::string label, file;
   std::string scalar_name;  // empty: not coloured by a scalar
-  bool has_rgb = false;
   pcl::PointCloud<pcl::PointXYZRGB>::Ptr cloud{new pcl::PointCloud<pcl::PointXYZRGB>};
   std::vector<double> scalar;  // per point of cloud, when scalar_name is set
 };
@@ -231,9 +231,7 @@ parseArguments (int argc, char **argv)
         throw InputError ("--view: the viewing direction must be a non-zero vector");
       if (!(opt.up.norm () > 0.0) || !std::isfinite (opt.up.norm ()))
         throw InputError ("--view: the up vector must be a non-zero vector");
-      opt.direction.normalize ();
-      opt.up.normalize ();
-      if (opt.direction.cross (opt.up).norm () < 1e-6)
+      if (opt.direction.normalized ().cross (opt.up.normalized ()).norm () < 1e-6)
         throw InputError ("--view: the up vector is parallel to the viewing direction");
       i += 6;
     }
@@ -255,6 +253,8 @@ parseArguments (int argc, char **argv)
     else
       throw InputError ("unknown option '" + arg + "' (render_views -h for the usage)");
   }
+  opt.direction.normalize ();  // the defaults too
+  opt.up.normalize ();
   if (positional.empty ())
     throw InputError ("missing OUT.png and clouds (render_views -h for the usage)");
   opt.out = positional[0];
@@ -329,7 +329,19 @@ loadView (const std::string &label, const std::string &file)
   try
   {
     if (ext == ".pcd")
-      rc = pcl::io::loadPCDFile (file, blob);
+    {
+      // PCL 1.13 crashes reading a file without FIELDS (an empty file, another format):
+      // look at the header first.
+      pcl::PCDReader reader;
+      Eigen::Vector4f origin;
+      Eigen::Quaternionf orientation;
+      int version = 0, data_type = 0;
+      unsigned int data_index = 0;
+      if (reader.readHeader (file, blob, origin, orientation, version, data_type, data_index) < 0 ||
+          blob.fields.empty ())
+        throw InputError (file + ": not a PCD file (no FIELDS in its header)");
+      rc = reader.read (file, blob);
+    }
     else if (ext == ".ply")
       rc = pcl::io::loadPLYFile (file, blob);
     else
@@ -361,7 +373,6 @@ loadView (const std::string &label, const std::string &file)
     fc = nullptr;
   if (fs)
     view.scalar_name = fs->name;
-  view.has_rgb = fc != nullptr;
 
   const std::uint64_t width = blob.width, height = blob.height;
   const std::uint64_t step = blob.point_step, row = blob.row_step;
@@ -496,18 +507,35 @@ applyScalarColours (View &view, vtkLookupTable &lut, double lo, double hi)
 
 // --- Rendering and the check ----------------------------------------------------------
 
-void
-requireDisplay ()
+/** A connection to the X server, held while VTK opens its own. */
+class DisplayConnection
 {
-  const char *display = std::getenv ("DISPLAY");
-  if (!display || !*display)
-    throw InputError ("no X display (DISPLAY is not set); run under xvfb-run -a -s \"-screen 0 1920x1080x24\"");
-  // VTK aborts the process when it cannot connect, so try first.
-  ::Display *connection = XOpenDisplay (nullptr);
-  if (!connection)
-    throw InputError (std::string ("cannot open the X display '") + display + "'");
-  XCloseDisplay (connection);
-}
+public:
+  DisplayConnection ()
+  {
+    const char *display = std::getenv ("DISPLAY");
+    if (!display || !*display)
+      throw InputError ("no X display (DISPLAY is not set); run under xvfb-run -a -s \"-screen 0 1920x1080x24\"");
+    // VTK aborts the process when it cannot connect, so connect first. An X server
+    // started without -noreset (xvfb-run's default) resets when its last client leaves
+    // and refuses connections meanwhile: retry for a while, then keep this connection
+    // open so that the server cannot reset before VTK has connected.
+    for (int attempt = 0; attempt < 20 && !connection_; ++attempt)
+    {
+      if (attempt > 0)
+        std::this_thread::sleep_for (std::chrono::milliseconds (100));
+      connection_ = XOpenDisplay (nullptr);
+    }
+    if (!connection_)
+      throw InputError (std::string ("cannot open the X display '") + display + "'");
+  }
+  ~DisplayConnection () { XCloseDisplay (connection_); }
+  DisplayConnection (const DisplayConnection &) = delete;
+  DisplayConnection &operator= (const DisplayConnection &) = delete;
+
+private:
+  ::Display *connection_ = nullptr;
+};
 
 vtkRenderer *
 rendererOf (pcl::visualization::PCLVisualizer &viz, int viewport)
@@ -530,6 +558,7 @@ main (int argc, char **argv)
   Options opt;
   std::vector<View> views;
   std::string tmp;
+  std::unique_ptr<DisplayConnection> display;  // outlives the visualizer
   try
   {
     opt = parseArguments (argc, argv);
@@ -545,7 +574,7 @@ main (int argc, char **argv)
     }
     else
       throw InputError ("cannot write " + opt.out + ": " + std::strerror (errno));
-    requireDisplay ();
+    display = std::make_unique<DisplayConnection> ();
   }
   catch (const std::exception &e)
   {
@@ -623,8 +652,8 @@ main (int argc, char **argv)
       bar->SetLookupTable (lut);
       bar->SetOrientationToHorizontal ();
       bar->SetTitle (title.c_str ());
-      bar->SetNumberOfLabels (5);
-      bar->SetLabelFormat ("%.3g");
+      bar->SetNumberOfLabels (width >= 1200 ? 5 : 3);  // room for "-0.0001234"-wide labels
+      bar->SetLabelFormat ("%.4g");
       bar->SetPosition (0.25, 0.04);
       bar->SetWidth (0.5);
       bar->SetHeight (0.92);
@@ -727,9 +756,12 @@ main (int argc, char **argv)
     }
     for (int i = 0; i < n; ++i)
       if (coverage[i].pixels < coverage[i].required)
-        throw RenderError ("view " + std::to_string (i + 1) + " (" + views[i].file + ") shows " +
+        throw RenderError ("view " + std::to_string (i + 1) + " (" + views[i].file + ") has " +
                            std::to_string (coverage[i].pixels) + " non-background pixels, fewer than the " +
-                           std::to_string (coverage[i].required) + " required: blank or broken rendering");
+                           std::to_string (coverage[i].required) +
+                           " required: the cloud is not drawn, degenerate in this view, or shrunk by far "
+                           "points (all clouds fit a sphere of radius " +
+                           std::to_string (radius) + ")");
 
     std::error_code ec;
     std::filesystem::rename (tmp, opt.out, ec);
@@ -737,7 +769,7 @@ main (int argc, char **argv)
       throw RenderError ("cannot move " + tmp + " to " + opt.out + ": " + ec.message ());
     std::printf ("%s %dx%d, non-background pixels:", opt.out.c_str (), width, height);
     for (int i = 0; i < n; ++i)
-      std::printf ("%s %.2f%% (%s)", i ? "," : "", 100.0 * coverage[i].fraction, views[i].label.c_str ());
+      std::printf ("%s %.3g%% (%s)", i ? "," : "", 100.0 * coverage[i].fraction, views[i].label.c_str ());
     std::printf ("\n");
     return 0;
   }

@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(cmake g++ make pkg-config libpcl-dev libeigen3-dev libnanoflann-dev libsuitesparse-dev libopenblas0-pthread libcgal-dev libtbb-dev libgtest-dev)
+packages=(cmake g++ make pkg-config libpcl-dev libeigen3-dev libnanoflann-dev libsuitesparse-dev libopenblas0-pthread libcgal-dev libtbb-dev libgtest-dev xvfb xauth)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
