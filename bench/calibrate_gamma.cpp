@@ -2,114 +2,182 @@
  * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
  * SPDX-License-Identifier: BSD-3-Clause
  *
- * How the constants of the data-derived gamma (core/default_gamma.cpp) were chosen:
- * noisy planes, spheres and cubes (20k and 100k points, noise 0.5%, 1% and 2% of the
- * size), the mean distance to the true surface for candidate rules, and their
- * geometric mean over the spheres and cubes (planes are shown, not scored: on a plane
- * more smoothing is always better).
+ * How the constants of the data-derived gamma (core/default_gamma.cpp) are chosen, for
+ * the filters as they run by default (normal displacement and shrinkage correction on).
+ * Calibration set, kept apart from the evaluation's PU-GAN meshes: the CAD benchmark's
+ * block, joint, part-Lp and casting, the Stanford dragon and decimated bunny (each
+ * normalised to the unit sphere, sampled uniformly), a sphere and a cube; 10,000 and
+ * 50,000 points; Gaussian noise 0.5%, 1% and 2%. Error: the protocol's point-to-mesh
+ * distance (squared, both ways) for the meshes, the mean distance to the surface for the
+ * sphere and the cube.
  *
- *   calibrate_gamma
+ *   calibrate_gamma [--data DIR]
  *
- * Tikhonov candidates: gamma x mean degree = A r^p with r = noise / spacing, the noise
- * estimated by core::estimateNoiseLevel. TV candidates: gamma = B noise / mean_i sum_j
- * sqrt(w_ij). The defaults are Tikhonov A = 20, p = 1.5 and TV B = 10 (B = 15..20 is
- * about 1% better on average, but B = 10 keeps edges sharper than Tikhonov; see the
- * edge tests in test/test_smoothing.cpp).
+ * For every cloud, both filters run at multiples m (1/4 to 16) of the current default
+ * gamma; the best m is fitted as log m = a + b log r with r = estimated noise / spacing
+ * (the quantity the rules scale with), and the fitted rule is run to report, over the
+ * set, the geometric mean of its error over the best of the sweep (1 = always the best)
+ * next to the current rule's.
  */
-#include <pcl_graph_denoise/core/graph.h>
-#include <pcl_graph_denoise/core/noise_level.h>
-#include <pcl_graph_denoise/core/operators.h>
-#include <pcl_graph_denoise/core/solvers.h>
+#include <pcl_graph_denoise/graph_tikhonov_smoothing.h>
+#include <pcl_graph_denoise/graph_tv_smoothing.h>
 
+#include "mesh_metrics.h"
 #include "synthetic.h"
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <vector>
 
 using namespace pcl_graph_denoise;
-using namespace pcl_graph_denoise::core;
+using namespace pcl_graph_denoise::evaluation;
+
+namespace {
+
+struct Sample
+{
+  double r = 0.0;                 // estimated noise / spacing
+  std::vector<double> error;      // per multiple
+  double best = 0.0, best_m = 0.0;
+  double gamma = 0.0;             // the current default gamma
+};
+
+const std::vector<double> kMultiples = {0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0};
+
+template <typename Filter>
+Sample
+sweep (const Cloud::Ptr &cloud, const std::function<double (const Cloud &)> &error)
+{
+  Filter filter;
+  filter.setInputCloud (cloud);
+  Cloud out;
+  filter.filter (out);
+  Sample s;
+  s.gamma = filter.getUsedGamma ();
+  s.r = filter.getEstimatedNoise () / (std::sqrt (2.0) * filter.getUsedSigma ());  // sigma = spacing / sqrt 2
+  s.best = std::numeric_limits<double>::infinity ();
+  for (double m : kMultiples)
+  {
+    filter.setGamma (m * s.gamma);
+    filter.filter (out);
+    s.error.push_back (error (out));
+    if (s.error.back () < s.best)
+      s.best = s.error.back (), s.best_m = m;
+  }
+  return s;
+}
+
+/** Least squares fit of log(best m) = a + b log r. */
+std::pair<double, double>
+fit (const std::vector<Sample> &samples)
+{
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = double (samples.size ());
+  for (const auto &s : samples)
+  {
+    const double x = std::log (s.r), y = std::log (s.best_m);
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  const double b = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  return {(sy - b * sx) / n, b};
+}
+
+} // namespace
 
 int
-main ()
+main (int argc, char **argv)
 {
-  std::setvbuf (stdout, nullptr, _IOLBF, 0);  // progress shows as it comes
-  struct TikhonovRule
+  std::setvbuf (stdout, nullptr, _IOLBF, 0);
+  std::string data = PGD_SHARED_DATA;
+  if (argc == 3 && !std::strcmp (argv[1], "--data"))
+    data = argv[2];
+  struct Shape
   {
-    double a, p;
+    std::string name;
+    std::function<Cloud (std::size_t, double, std::uint64_t)> sample;
+    std::function<double (const Cloud &)> error;
   };
-  const std::vector<TikhonovRule> tikhonov = {{8, 1}, {12, 1}, {18, 1}, {20, 1.5}, {30, 1.5}, {40, 2}};
-  const std::vector<double> tv = {10, 15, 20, 25, 30, 40};
-  const char *names[] = {"plane", "sphere", "cube"};
-  std::vector<double> log_t (tikhonov.size (), 0.0), log_v (tv.size (), 0.0);
-  int scored = 0;
+  std::vector<Shape> shapes;
+  std::vector<std::unique_ptr<MeshDistance>> distances;
+  for (const char *file : {"cad_denoise_benchmark/block.obj", "cad_denoise_benchmark/joint.obj",
+                           "cad_denoise_benchmark/partLp.obj", "cad_denoise_benchmark/casting.obj",
+                           "stanford/dragon_vrip_res3.ply", "stanford/bun_zipper_res2.ply"})
+  {
+    TriangleMesh mesh;
+    std::string error;
+    if (!loadMesh (data + "/meshes/" + file, mesh, error))
+    {
+      std::fprintf (stderr, "error: %s\n", error.c_str ());
+      return 2;
+    }
+    transform (unitSphereNormalisation (mesh), mesh);
+    distances.emplace_back (new MeshDistance (mesh));
+    const MeshDistance *d = distances.back ().get ();
+    shapes.push_back ({file, [d] (std::size_t n, double noise, std::uint64_t seed) {
+                         return addGaussianNoise (sampleSurface (d->mesh (), n, seed), noise, seed + 1);
+                       },
+                       [d] (const Cloud &c) { return pointToMeshDistance (c, *d); }});
+  }
+  shapes.push_back ({"sphere", [] (std::size_t n, double noise, std::uint64_t seed) {
+                       return synthetic::noisySphere (n, 1.0, noise, seed);
+                     },
+                     [] (const Cloud &c) { return synthetic::meanDistance (c, synthetic::distanceToUnitSphere); }});
+  shapes.push_back ({"cube", [] (std::size_t n, double noise, std::uint64_t seed) {
+                       return synthetic::noisyCube (n, 0.577 * noise, seed);  // unit-sphere scale
+                     },
+                     [] (const Cloud &c) { return synthetic::meanDistance (c, synthetic::distanceToCube); }});
 
-  std::printf ("Tikhonov columns (A, p):");
-  for (const auto &r : tikhonov)
-    std::printf (" (%g, %g)", r.a, r.p);
-  std::printf ("\nTV columns B:");
-  for (double b : tv)
-    std::printf (" %g", b);
-  std::printf ("\n");
-  for (int shape = 0; shape < 3; ++shape)
-    for (std::size_t n : {20000, 100000})
+  std::vector<Sample> tikhonov, tv;
+  std::vector<Cloud::Ptr> clouds;
+  std::vector<const Shape *> of;
+  std::uint64_t seed = 7000;
+  for (const auto &shape : shapes)
+    for (std::size_t n : {10000, 50000})
       for (double noise : {0.005, 0.01, 0.02})
       {
-        const synthetic::Cloud cloud = shape == 0   ? synthetic::noisyPlane (n, noise, 5)
-                                       : shape == 1 ? synthetic::noisySphere (n, 1.0, noise, 5)
-                                                    : synthetic::noisyCube (n, noise, 5);
-        const synthetic::SurfaceDistance distance = shape == 0   ? synthetic::distanceToPlane
-                                                    : shape == 1 ? synthetic::distanceToUnitSphere
-                                                                 : synthetic::distanceToCube;
-        PointMatrix points (cloud.size (), 3);
-        for (std::size_t i = 0; i < cloud.size (); ++i)
-          points.row (i) = cloud[i].getVector3fMap ().transpose ();
-        const PointGraph graph = buildKnnGraph (points);
-        Signal3 f (n, 3);
-        for (std::size_t v = 0; v < n; ++v)
-          f.row (v) = points.row (graph.order[v]).cast<double> ();
-        const double sigma = estimateNoiseLevel (graph, f);
-        const double r = sigma / graph.spacing;
-        const auto error = [&] (const Signal3 &x) {
-          double sum = 0.0;
-          for (Eigen::Index i = 0; i < x.rows (); ++i)
-            sum += distance (x.row (i).transpose ());
-          return sum / x.rows ();
-        };
-        double degree = 0.0, root = 0.0;
-        for (std::size_t i = 0; i < n; ++i)
-          for (auto e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
-            degree += graph.weight[e], root += std::sqrt (graph.weight[e]);
-        degree /= n;
-        root /= n;
-        std::printf ("%-6s %6zu noise %.3f estimated %.4f r %.2f input %.5f | Tikhonov", names[shape],
-                     n, noise, sigma, r, error (f));
-        for (std::size_t c = 0; c < tikhonov.size (); ++c)
-        {
-          const double e = error (solveTikhonov (graph, f, tikhonov[c].a * std::pow (r, tikhonov[c].p) / degree));
-          std::printf (" %.5f", e);
-          if (shape > 0)
-            log_t[c] += std::log (e);
-        }
-        std::printf (" | TV");
-        for (std::size_t c = 0; c < tv.size (); ++c)
-        {
-          const double e = error (solveTotalVariation (graph, f, tv[c] * sigma / root));
-          std::printf (" %.5f", e);
-          if (shape > 0)
-            log_v[c] += std::log (e);
-        }
-        std::printf ("\n");
-        std::fflush (stdout);
-        scored += shape > 0;
+        clouds.emplace_back (new Cloud (shape.sample (n, noise, seed += 2)));
+        of.push_back (&shape);
+        tikhonov.push_back (sweep<GraphTikhonovSmoothing<pcl::PointXYZ>> (clouds.back (), shape.error));
+        tv.push_back (sweep<GraphTVSmoothing<pcl::PointXYZ>> (clouds.back (), shape.error));
+        std::printf ("%-32s %5zu noise %.3f r %.3f | best multiple: Tikhonov %g (%.3gx the default's "
+                     "error), TV %g (%.3gx)\n",
+                     shape.name.c_str (), n, noise, tikhonov.back ().r, tikhonov.back ().best_m,
+                     tikhonov.back ().error[2] / tikhonov.back ().best, tv.back ().best_m,
+                     tv.back ().error[2] / tv.back ().best);
       }
-  std::printf ("geometric mean over spheres and cubes, Tikhonov:");
-  for (double s : log_t)
-    std::printf (" %.6f", std::exp (s / scored));
-  std::printf ("\ngeometric mean over spheres and cubes, TV:");
-  for (double s : log_v)
-    std::printf (" %.6f", std::exp (s / scored));
-  std::printf ("\n");
+
+  for (int which = 0; which < 2; ++which)
+  {
+    const auto &samples = which == 0 ? tikhonov : tv;
+    const auto [a, b] = fit (samples);
+    double log_current = 0.0, log_fitted = 0.0;
+    for (std::size_t i = 0; i < samples.size (); ++i)
+    {
+      const double m = std::exp (a) * std::pow (samples[i].r, b);
+      Cloud out;
+      if (which == 0)
+      {
+        GraphTikhonovSmoothing<pcl::PointXYZ> f;
+        f.setInputCloud (clouds[i]);
+        f.setGamma (m * samples[i].gamma);
+        f.filter (out);
+      }
+      else
+      {
+        GraphTVSmoothing<pcl::PointXYZ> f;
+        f.setInputCloud (clouds[i]);
+        f.setGamma (m * samples[i].gamma);
+        f.filter (out);
+      }
+      log_current += std::log (samples[i].error[2] / samples[i].best);
+      log_fitted += std::log (of[i]->error (out) / samples[i].best);
+    }
+    std::printf ("%s: best multiple ~ %.3g r^%.3f; error over the best of the sweep, geometric "
+                 "mean: current rule %.3f, fitted %.3f\n",
+                 which == 0 ? "Tikhonov" : "TV", std::exp (a), b, std::exp (log_current / samples.size ()),
+                 std::exp (log_fitted / samples.size ()));
+  }
   return 0;
 }

@@ -34,6 +34,8 @@ int
 pugan (const Options &options);
 int
 bunny (const Options &options);
+int
+outliers (const Options &options);
 
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 

@@ -4,6 +4,7 @@
  */
 #include "mesh_metrics.h"
 
+#include <pcl/io/pcd_io.h>
 #include <pcl/kdtree/kdtree_flann.h>
 
 #include <CGAL/AABB_traits.h>
@@ -272,6 +273,21 @@ distancesToMesh (const Cloud &cloud, const MeshDistance &mesh)
   for (std::size_t i = 0; i < cloud.size (); ++i)
     d[i] = std::sqrt (mesh.squaredDistance (cloud[i].getVector3fMap ().cast<double> ()));
   return d;
+}
+
+void
+saveWithDistance (const std::string &path, const Cloud &cloud, const MeshDistance &mesh, double scale)
+{
+  const std::vector<double> d = distancesToMesh (cloud, mesh);
+  pcl::PointCloud<pcl::PointXYZI> out;
+  for (std::size_t i = 0; i < cloud.size (); ++i)
+  {
+    pcl::PointXYZI p;
+    p.getVector3fMap () = cloud[i].getVector3fMap ();
+    p.intensity = float (d[i] * scale);
+    out.push_back (p);
+  }
+  pcl::io::savePCDFileBinary (path, out);
 }
 
 double

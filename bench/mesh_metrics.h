@@ -108,5 +108,10 @@ meanDistanceToMesh (const Cloud &cloud, const MeshDistance &mesh);
 std::vector<double>
 distancesToMesh (const Cloud &cloud, const MeshDistance &mesh);
 
+/** Writes the cloud as a binary PCD with x y z and, as intensity, each point's distance
+ *  to the mesh times `scale` (e.g. 1000 for millimetres from metres), for pictures. */
+void
+saveWithDistance (const std::string &path, const Cloud &cloud, const MeshDistance &mesh, double scale);
+
 } // namespace evaluation
 } // namespace pcl_graph_denoise

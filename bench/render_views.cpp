@@ -7,7 +7,7 @@
  * once without an interactor and written to a PNG. It needs an X server: on a machine
  * without a display run it under Xvfb.
  *
- *   render_views OUT.png [--size W H] [--range LO HI] [--view DX DY DZ UX UY UZ]
+ *   render_views OUT.png [--size W H] [--range LO HI] [--view DX DY DZ UX UY UZ] [--fit N]
  *                [--point-size S] [--scalar-title TEXT]
  *                LABEL1 FILE1 [LABEL2 FILE2 [LABEL3 FILE3]]
  *
@@ -21,7 +21,8 @@
  * non-finite coordinate are skipped; points with a non-finite scalar are drawn grey.
  * --view gives the viewing direction (from the camera towards the centre) and the up
  * vector, default -1 -1 -1 0 0 1 (a 3/4 view from above); the camera distance fits the
- * bounding sphere of all clouds. Defaults: size 800n x 800 for n views; point size 2,
+ * bounding sphere of all clouds (--fit N: of view N's cloud only, e.g. the cloud left
+ * after outlier removal, so that far outliers do not shrink the picture). Defaults: size 800n x 800 for n views; point size 2,
  * or 3 when the largest cloud has fewer than 20000 points, 4 below 2000.
  *
  * The PNG is read back: each view must show at least min(0.5% of its area, a quarter of
@@ -80,7 +81,7 @@
 namespace {
 
 const char *const usage_text =
-    "usage: render_views OUT.png [--size W H] [--range LO HI] [--view DX DY DZ UX UY UZ]\n"
+    "usage: render_views OUT.png [--size W H] [--range LO HI] [--view DX DY DZ UX UY UZ] [--fit N]\n"
     "                    [--point-size S] [--scalar-title TEXT]\n"
     "                    LABEL1 FILE1 [LABEL2 FILE2 [LABEL3 FILE3]]\n"
     "\n"
@@ -90,6 +91,7 @@ const char *const usage_text =
     "  --size W H           window size in pixels (default 800n x 800 for n clouds)\n"
     "  --range LO HI        colour range of the \"distance\"/\"intensity\" field (default 0 to\n"
     "                       its 98th percentile over all clouds, -a..a if a value is < 0)\n"
+    "  --fit N              fit the camera to view N's cloud only (default: all clouds)\n"
     "  --view DX DY DZ UX UY UZ\n"
     "                       viewing direction (camera towards the centre) and up vector\n"
     "                       (default -1 -1 -1 0 0 1)\n"
@@ -129,6 +131,7 @@ struct Options
   Eigen::Vector3d direction{-1.0, -1.0, -1.0};
   Eigen::Vector3d up{0.0, 0.0, 1.0};
   double point_size = 0.0;  // 0: default
+  int fit = 0;              // 0: the camera fits all clouds; else the view (1-based) it fits
   bool has_title = false;
   std::string scalar_title;
   std::vector<std::pair<std::string, std::string>> views;  // label, file
@@ -234,6 +237,15 @@ parseArguments (int argc, char **argv)
       if (opt.direction.normalized ().cross (opt.up.normalized ()).norm () < 1e-6)
         throw InputError ("--view: the up vector is parallel to the viewing direction");
       i += 6;
+    }
+    else if (arg == "--fit")
+    {
+      need (1);
+      const double view = parseNumber (arg, argv[i + 1]);
+      if (!(view >= 1.0 && view <= 3.0 && view == std::floor (view)))
+        throw InputError ("--fit: N must be the number of a view (1 to 3)");
+      opt.fit = static_cast<int> (view);
+      i += 1;
     }
     else if (arg == "--point-size")
     {
@@ -668,11 +680,18 @@ main (int argc, char **argv)
       rendererOf (viz, bar_viewport)->AddActor2D (bar);
     }
 
-    // One camera for every view, fitted to the bounding sphere of all clouds.
+    // One camera for every view, fitted to the bounding sphere of all clouds (or of the
+    // one --fit names).
+    if (opt.fit > n)
+      throw InputError ("--fit: there is no view " + std::to_string (opt.fit));
+    std::vector<const View *> fitted;
+    for (int i = 0; i < n; ++i)
+      if (opt.fit == 0 || opt.fit == i + 1)
+        fitted.push_back (&views[i]);
     Eigen::Vector3d min_pt = Eigen::Vector3d::Constant (std::numeric_limits<double>::max ());
     Eigen::Vector3d max_pt = -min_pt;
-    for (const auto &v : views)
-      for (const auto &p : *v.cloud)
+    for (const View *v : fitted)
+      for (const auto &p : *v->cloud)
       {
         const Eigen::Vector3d q = p.getVector3fMap ().cast<double> ();
         min_pt = min_pt.cwiseMin (q);
@@ -680,8 +699,8 @@ main (int argc, char **argv)
       }
     const Eigen::Vector3d centre = 0.5 * (min_pt + max_pt);
     double radius = 0.0;
-    for (const auto &v : views)
-      for (const auto &p : *v.cloud)
+    for (const View *v : fitted)
+      for (const auto &p : *v->cloud)
         radius = std::max (radius, (p.getVector3fMap ().cast<double> () - centre).norm ());
     radius = std::max (radius, 1e-3 * std::max (1.0, centre.cwiseAbs ().maxCoeff ()));
     const double view_angle = 30.0;  // vertical, degrees

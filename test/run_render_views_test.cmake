@@ -80,7 +80,7 @@ endif()
 set(png "${WORK_DIR}/options.png")
 execute_process(
   COMMAND ${xvfb} "${RENDER_VIEWS}" "${png}" --size 1200 500 --range 0 10
-          --view 0 0 -1 0 1 0 --point-size 5 --scalar-title "distance (units)"
+          --view 0 0 -1 0 1 0 --point-size 5 --scalar-title "distance (units)" --fit 2
           noisy "${WORK_DIR}/noisy.pcd" smoothed "${WORK_DIR}/smooth.pcd" again "${WORK_DIR}/noisy.pcd"
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 300)
 message("${out}${err}")
@@ -90,6 +90,16 @@ endif()
 file(READ "${png}" dims OFFSET 16 LIMIT 8 HEX)
 if(NOT dims STREQUAL "000004b0000001f4")
   message(FATAL_ERROR "${png} is not 1200x500 (IHDR ${dims})")
+endif()
+
+# --fit names a view that does not exist: an error, exit code 2, and no picture.
+set(png "${WORK_DIR}/badfit.png")
+execute_process(
+  COMMAND ${xvfb} "${RENDER_VIEWS}" "${png}" --fit 3 noisy "${WORK_DIR}/noisy.pcd"
+          smoothed "${WORK_DIR}/smooth.pcd"
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 300)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "--fit" OR EXISTS "${png}")
+  message(FATAL_ERROR "render_views --fit 3 with two views: rc ${rc}, ${err}")
 endif()
 
 # A missing input file: an error, exit code 2, and no picture.

@@ -13,10 +13,10 @@ namespace core {
 
 namespace {
 
-// Calibrated on noisy spheres and cubes (20k and 100k points, noise 0.5%, 1% and 2% of
-// the size) for the lowest geometric-mean distance to the true surface, with
-// bench/calibrate_gamma (which prints the sweep and how far each rule lands from the
-// best gamma).
+// Calibrated for the paper's filters on noisy spheres and cubes (20k and 100k points,
+// noise 0.5%, 1% and 2% of the size) for the lowest geometric-mean distance to the true
+// surface. bench/calibrate_gamma measures how far they land from the best gamma for the
+// refined default filters on meshes (docs/evaluation.md, section 5).
 constexpr double kTikhonovC = 20.0;
 constexpr double kTikhonovExponent = 1.5;
 constexpr double kTotalVariationC = 10.0;

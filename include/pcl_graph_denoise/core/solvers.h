@@ -95,7 +95,7 @@ totalVariationObjective (const PointGraph &graph, const Signal3 &f, const Signal
  *  points' units): gamma = 20 (noise / spacing)^1.5 / mean weighted degree. The best
  *  gamma grows with the noise and with the density (gamma x mean degree from about 10
  *  at 100k points to 100 at 1M points on a noisy sphere); the noise-to-spacing ratio
- *  carries both. Calibrated on noisy spheres and cubes (bench/calibrate_gamma). Unitless;
+ *  carries both. Calibrated for the paper's filters on noisy spheres and cubes. Unitless;
  *  0 when the graph has no edges or the noise is 0. */
 double
 defaultTikhonovGamma (const PointGraph &graph, double noise);
