@@ -31,12 +31,13 @@ estimateNoiseLevel (const PointGraph &graph, const Signal3 &points, int num_thre
   std::vector<double> deviation (samples, -1.0);
   detail::parallelFor (samples, num_threads, [&] (std::size_t begin, std::size_t end) {
     std::vector<VertexIndex> ring;
+    detail::TwoRing two_ring;
     for (std::size_t sample = begin; sample < end; ++sample)
     {
       const std::size_t i = sample * stride;
       // The vertex, its neighbours and theirs: wide enough that noise comparable to
       // the spacing does not hide in the choice of the neighbourhood.
-      detail::twoRing (graph, i, ring);
+      two_ring.collect (graph, i, ring);
       const double m = double (ring.size ());
       if (m < 5.0)
         continue;  // a plane through fewer than five points says nothing of the noise

@@ -23,13 +23,14 @@ estimateNormals (const PointGraph &graph, const Signal3 &points, int num_threads
   Signal3 normals = Signal3::Zero (static_cast<Eigen::Index> (n), 3);
   detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
     std::vector<VertexIndex> ring;
+    detail::TwoRing two_ring;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
     for (std::size_t i = begin; i < end; ++i)
     {
-      detail::twoRing (graph, i, ring);
+      two_ring.collect (graph, i, ring);
       if (ring.size () < 3)
         continue;
-      eig.compute (detail::ringCovariance (points, ring, i));
+      eig.computeDirect (detail::ringCovariance (points, ring, i));
       normals.row (i) = eig.eigenvectors ().col (0).transpose ();
     }
   });

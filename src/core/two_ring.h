@@ -5,35 +5,88 @@
 #pragma once
 
 /* A vertex's local surface patch on the graph: its two rings of neighbours and their
- * covariance (the local plane fit behind the noise estimate and the normals). */
+ * covariance (the local plane fit behind the noise estimate and the normals). The
+ * rings are collected in a reused hash set: sorting them cost two thirds of the normals'
+ * time at 1M points. */
 
 #include <pcl_graph_denoise/core/graph.h>
 
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace pcl_graph_denoise {
 namespace core {
 namespace detail {
 
-/** The vertex i, its neighbours and theirs, sorted, each once. */
-inline void
-twoRing (const PointGraph &graph, std::size_t i, std::vector<VertexIndex> &ring)
+/** Collects a vertex's two rings (the vertex, its neighbours and theirs, each once, in
+ *  the order first met) with a small open-addressing set that is reused from vertex to
+ *  vertex: no sort, no clearing. One per thread. */
+class TwoRing
 {
-  ring.clear ();
-  ring.push_back (static_cast<VertexIndex> (i));
-  for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+public:
+  void
+  collect (const PointGraph &graph, std::size_t i, std::vector<VertexIndex> &ring)
   {
-    const VertexIndex j = graph.col[e];
-    ring.push_back (j);
-    for (std::uint64_t f = graph.row_ptr[j]; f < graph.row_ptr[j + 1]; ++f)
-      ring.push_back (graph.col[f]);
+    std::uint64_t bound = 1;
+    for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+    {
+      const VertexIndex j = graph.col[e];
+      bound += 1 + (graph.row_ptr[j + 1] - graph.row_ptr[j]);
+    }
+    int bits = 4;
+    while ((std::uint64_t (1) << bits) < 2 * bound)
+      ++bits;
+    if (bits != bits_)
+    {
+      bits_ = bits;
+      slot_.assign (std::size_t (1) << bits, 0);
+      stamp_.assign (std::size_t (1) << bits, 0);
+      epoch_ = 0;
+    }
+    if (++epoch_ == 0)  // wrapped: forget every stamp
+    {
+      std::fill (stamp_.begin (), stamp_.end (), 0);
+      epoch_ = 1;
+    }
+    ring.clear ();
+    insert (static_cast<VertexIndex> (i), ring);
+    for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+    {
+      const VertexIndex j = graph.col[e];
+      insert (j, ring);
+      for (std::uint64_t f = graph.row_ptr[j]; f < graph.row_ptr[j + 1]; ++f)
+        insert (graph.col[f], ring);
+    }
   }
-  std::sort (ring.begin (), ring.end ());
-  ring.erase (std::unique (ring.begin (), ring.end ()), ring.end ());
-}
+
+private:
+  void
+  insert (VertexIndex v, std::vector<VertexIndex> &ring)
+  {
+    const std::size_t mask = (std::size_t (1) << bits_) - 1;
+    for (std::size_t h = std::size_t ((std::uint64_t (v) * 0x9E3779B97F4A7C15ull) >> (64 - bits_)) & mask;;
+         h = (h + 1) & mask)
+    {
+      if (stamp_[h] != epoch_)
+      {
+        stamp_[h] = epoch_;
+        slot_[h] = v;
+        ring.push_back (v);
+        return;
+      }
+      if (slot_[h] == v)
+        return;
+    }
+  }
+
+  int bits_ = 0;
+  std::uint32_t epoch_ = 0;
+  std::vector<VertexIndex> slot_;
+  std::vector<std::uint32_t> stamp_;
+};
 
 /** Covariance of the points of `ring` (taken relative to the point `origin`, so that
  *  large coordinates lose no precision). */
