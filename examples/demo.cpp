@@ -7,7 +7,8 @@
  * filters at their data-derived defaults (GraphDegreeOutlierRemoval, then
  * GraphTVSmoothing), writes both clouds as PCD files and reports what it did.
  *
- *   pcl_graph_denoise_demo [output_directory]     (default: the current directory)
+ *   pcl_graph_denoise_demo [output_directory]     (default: the current directory;
+ *                                                   created when missing)
  */
 #include <pcl_graph_denoise/graph_degree_outlier_removal.h>
 #include <pcl_graph_denoise/graph_tv_smoothing.h>
@@ -18,6 +19,9 @@
 
 #include <chrono>
 #include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <system_error>
 #include <string>
 
 namespace {
@@ -87,8 +91,20 @@ main (int argc, char **argv)
 
   start = std::chrono::steady_clock::now ();
   const std::string in_path = dir + "demo_input.pcd", out_path = dir + "demo_output.pcd";
-  if (pcl::io::savePCDFileBinary (in_path, *input) != 0 ||
-      pcl::io::savePCDFileBinary (out_path, *smoothed) != 0)
+  bool written = false;
+  try
+  {
+    std::error_code ignored;  // an existing folder is fine; failures show when writing
+    if (!dir.empty ())
+      std::filesystem::create_directories (dir, ignored);
+    written = pcl::io::savePCDFileBinary (in_path, *input) == 0 &&
+              pcl::io::savePCDFileBinary (out_path, *smoothed) == 0;
+  }
+  catch (const std::exception &)  // PCL's writer throws pcl::IOException
+  {
+    written = false;
+  }
+  if (!written)
   {
     std::fprintf (stderr, "error: cannot write %s and %s\n", in_path.c_str (), out_path.c_str ());
     return 1;

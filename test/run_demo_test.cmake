@@ -1,6 +1,15 @@
-# Runs the demo in an empty folder and checks that it wrote both PCD files.
+# Runs the demo into a folder that does not exist yet (it creates it) and checks that it
+# wrote both PCD files; then into a path under a regular file, where it must fail with a
+# clear error instead of crashing.
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
+file(WRITE "${WORK_DIR}/a_file" "not a folder\n")
+execute_process(COMMAND "${DEMO}" "${WORK_DIR}/a_file/out" RESULT_VARIABLE rc
+                OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 1 OR NOT err MATCHES "error: cannot write")
+  message(FATAL_ERROR "demo into an impossible folder: exit ${rc}, ${err}")
+endif()
+set(WORK_DIR "${WORK_DIR}/new/folder")
 execute_process(COMMAND "${DEMO}" "${WORK_DIR}" RESULT_VARIABLE rc OUTPUT_VARIABLE out)
 message("${out}")
 if(NOT rc EQUAL 0)
