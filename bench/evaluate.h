@@ -8,6 +8,8 @@
  * its tables under the output directory and returning non-zero in quick mode when a
  * claim that the report states no longer holds. */
 
+#include <pcl_graph_denoise/graph_smoothing.h>
+
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
@@ -65,6 +67,14 @@ struct MethodOptions
 std::vector<MethodResult>
 runMethods (const Cloud::Ptr &noisy, const std::function<double (const Cloud &)> &error,
             const MethodOptions &options);
+
+/** A smoother of ours with its data-derived gamma, and at the best of `factors` times
+ *  that gamma (the default itself counting as the factor 1): the results named
+ *  "<name> (defaults)" and "<name> (best γ)". The filter's other settings are the
+ *  caller's. */
+std::pair<MethodResult, MethodResult>
+defaultAndBestGamma (GraphSmoothing<pcl::PointXYZ> &filter, const std::string &name, const Cloud::Ptr &noisy,
+                     const std::function<double (const Cloud &)> &error, const std::vector<double> &factors);
 
 /** The methods runMethods reports, in order; the peers come from `firstPeer ()` on. */
 const std::vector<std::string> &

@@ -42,7 +42,8 @@ struct Shape
   Distance distance;
 };
 
-/** Error with the default gamma, and the best error over a sweep of factors of it. */
+/** Error of the paper's filter with the default gamma, and the best error over a sweep
+ *  of factors of it. */
 template <typename Filter>
 std::pair<double, double>
 defaultAndBest (const Cloud::Ptr &cloud, const Distance &distance, const std::vector<double> &factors)
@@ -50,19 +51,9 @@ defaultAndBest (const Cloud::Ptr &cloud, const Distance &distance, const std::ve
   Filter filter;
   filter.setNormalDisplacement (false);  // the paper's filters, exactly
   filter.setShrinkageCorrection (false);
-  filter.setInputCloud (cloud);
-  Cloud out;
-  filter.filter (out);
-  const double default_error = meanDistance (out, distance);
-  const double gamma = filter.getUsedGamma ();
-  double best = default_error;
-  for (double factor : factors)
-  {
-    filter.setGamma (factor * gamma);
-    filter.filter (out);
-    best = std::min (best, meanDistance (out, distance));
-  }
-  return {default_error, best};
+  const auto r = defaultAndBestGamma (
+      filter, "", cloud, [&] (const Cloud &out) { return meanDistance (out, distance); }, factors);
+  return {r.first.error, r.second.error};
 }
 
 struct Row

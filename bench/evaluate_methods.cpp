@@ -46,21 +46,21 @@ bestOf (const std::string &method, const std::vector<Setting> &settings,
   return best;
 }
 
-template <typename Filter>
-void
-ours (const std::string &name, const Cloud::Ptr &noisy, const std::function<double (const Cloud &)> &error,
-      std::vector<MethodResult> &results)
+} // namespace
+
+std::pair<MethodResult, MethodResult>
+defaultAndBestGamma (GraphSmoothing<pcl::PointXYZ> &filter, const std::string &name, const Cloud::Ptr &noisy,
+                     const std::function<double (const Cloud &)> &error, const std::vector<double> &factors)
 {
-  Filter filter;
+  filter.setAutomaticGamma ();
   filter.setInputCloud (noisy);
   MethodResult by_default;
   by_default.method = name + " (defaults)";
   by_default.seconds = seconds ([&] { filter.filter (by_default.output); });
   by_default.error = error (by_default.output);
   const double gamma = filter.getUsedGamma ();
-  results.push_back (by_default);
-  results.push_back (bestOf<double> (
-      name + " (best γ)", {0.25, 0.5, 1.0, 2.0, 4.0},
+  MethodResult best = bestOf<double> (
+      name + " (best γ)", factors,
       [&] (const double &f) {
         filter.setGamma (f * gamma);
         Cloud out;
@@ -72,10 +72,15 @@ ours (const std::string &name, const Cloud::Ptr &noisy, const std::function<doub
         std::snprintf (label, sizeof (label), "%gx", f);
         return std::string (label);
       },
-      error));
+      error);
+  if (!(best.error < by_default.error))  // the default is one of the candidates
+  {
+    best = by_default;
+    best.method = name + " (best γ)";
+    best.setting = "1x";
+  }
+  return {by_default, best};
 }
-
-} // namespace
 
 const std::vector<std::string> &
 methodNames ()
@@ -102,9 +107,18 @@ runMethods (const Cloud::Ptr &noisy, const std::function<double (const Cloud &)>
   input.method = "noisy input";
   input.output = *noisy;
   input.error = error (input.output);
-  results.push_back (input);
-  ours<GraphTikhonovSmoothing<pcl::PointXYZ>> ("Tikhonov", noisy, error, results);
-  ours<GraphTVSmoothing<pcl::PointXYZ>> ("TV", noisy, error, results);
+  results.push_back (std::move (input));
+  const std::vector<double> factors = {0.25, 0.5, 2.0, 4.0};
+  GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
+  GraphTVSmoothing<pcl::PointXYZ> tv;
+  const std::pair<GraphSmoothing<pcl::PointXYZ> *, const char *> ours[] = {{&tikhonov, "Tikhonov"},
+                                                                           {&tv, "TV"}};
+  for (const auto &[filter, name] : ours)
+  {
+    auto r = defaultAndBestGamma (*filter, name, noisy, error, factors);
+    results.push_back (std::move (r.first));
+    results.push_back (std::move (r.second));
+  }
 
   const double d20 = peers::meanKthNeighbourDistance (*noisy, 20);
   const auto label_k = [] (const unsigned &k) { return "k=" + std::to_string (k); };

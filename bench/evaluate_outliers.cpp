@@ -33,7 +33,6 @@
 #include <pcl/io/ply_io.h>
 
 #include <cmath>
-#include <random>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -138,31 +137,6 @@ runAll (const Cloud::Ptr &cloud, const std::vector<bool> &truth, double fraction
   return out;
 }
 
-/** Appends round(fraction x size) points uniform in the cloud's bounding cube (its
- *  bounding box widened to its largest side on every axis, then enlarged by 10%), so
- *  that a flat cloud gets outliers off its plane; returns, for every point, whether it
- *  is one of them. */
-std::vector<bool>
-addOutliersInBoundingCube (Cloud &cloud, double fraction, std::uint64_t seed)
-{
-  Eigen::Vector3f lo = cloud[0].getVector3fMap (), hi = lo;
-  for (const auto &p : cloud)
-  {
-    lo = lo.cwiseMin (p.getVector3fMap ());
-    hi = hi.cwiseMax (p.getVector3fMap ());
-  }
-  const Eigen::Vector3f centre = 0.5f * (lo + hi);
-  const float half = 0.55f * (hi - lo).maxCoeff ();
-  std::mt19937_64 rng (seed);
-  std::uniform_real_distribution<float> u (-half, half);
-  const std::size_t inliers = cloud.size (), added = std::size_t (std::lround (fraction * inliers));
-  for (std::size_t i = 0; i < added; ++i)
-    cloud.push_back (pcl::PointXYZ (centre.x () + u (rng), centre.y () + u (rng), centre.z () + u (rng)));
-  std::vector<bool> truth (cloud.size (), false);
-  std::fill (truth.begin () + inliers, truth.end (), true);
-  return truth;
-}
-
 /** Loads a real cloud (PCD or PLY) with its colours, finite points only. */
 bool
 loadReal (const std::string &path, pcl::PointCloud<pcl::PointXYZRGB> &cloud)
@@ -217,7 +191,7 @@ outliers (const Options &options)
     for (double fraction : fractions)
     {
       Cloud::Ptr cloud (new Cloud (c.clean));
-      const std::vector<bool> truth = addOutliersInBoundingCube (*cloud, fraction, ++seed);
+      const std::vector<bool> truth = synthetic::addUniformOutliers (*cloud, fraction, 0.05, ++seed, true);
       const auto detections = runAll (cloud, truth, fraction);
       results[c.group][fraction].push_back (detections);
       std::printf ("%-12s %3.0f%% outliers: F1", c.name.c_str (), fraction * 100);

@@ -94,16 +94,19 @@ noisyCube (std::size_t n, double noise, std::uint64_t seed)
 }
 
 std::vector<bool>
-addUniformOutliers (Cloud &cloud, double fraction, double margin, std::uint64_t seed)
+addUniformOutliers (Cloud &cloud, double fraction, double margin, std::uint64_t seed, bool cubic)
 {
   std::vector<bool> is_outlier (cloud.size (), false);
   if (cloud.empty ())
     return is_outlier;
   pcl::PointXYZ lo, hi;
   pcl::getMinMax3D (cloud, lo, hi);
-  const Eigen::Vector3d extent = (hi.getVector3fMap () - lo.getVector3fMap ()).cast<double> ();
-  const Eigen::Vector3d a = lo.getVector3fMap ().cast<double> () - margin * extent;
-  const Eigen::Vector3d b = hi.getVector3fMap ().cast<double> () + margin * extent;
+  const Eigen::Vector3d centre = 0.5 * (lo.getVector3fMap () + hi.getVector3fMap ()).cast<double> ();
+  Eigen::Vector3d extent = (hi.getVector3fMap () - lo.getVector3fMap ()).cast<double> ();
+  if (cubic)
+    extent.setConstant (extent.maxCoeff ());
+  const Eigen::Vector3d a = centre - (0.5 + margin) * extent;
+  const Eigen::Vector3d b = centre + (0.5 + margin) * extent;
   std::mt19937_64 rng (seed);
   std::uniform_real_distribution<double> u (0.0, 1.0);
   const auto count = static_cast<std::size_t> (std::llround (fraction * double (cloud.size ())));

@@ -33,10 +33,13 @@ Cloud
 noisyCube (std::size_t n, double noise, std::uint64_t seed);
 
 /** Appends round(fraction x size) points uniform in the cloud's bounding box enlarged
- *  by `margin` (relative to its extent) and returns, for every point of the result,
- *  whether it is one of the added outliers. */
+ *  by `margin` (relative to its extent, on each side) and returns, for every point of
+ *  the result, whether it is one of the added outliers. With `cubic`, the box is first
+ *  widened to its largest side on every axis, so that a flat cloud gets outliers off
+ *  its plane. */
 std::vector<bool>
-addUniformOutliers (Cloud &cloud, double fraction, double margin, std::uint64_t seed);
+addUniformOutliers (Cloud &cloud, double fraction, double margin, std::uint64_t seed,
+                    bool cubic = false);
 
 /** The demo's default input: a table top with a box and a ball on it, seen as a
  *  noisy scan (about 60,000 points, metres, noise 3 mm) with 4% outliers.

@@ -109,8 +109,8 @@ public:
   /** \brief Correct the shrinkage of curved surfaces (default true) by twicing: with
    *  H the smoothing, the result is 2 H(f) - H(H(f)), for Tikhonov the spectral
    *  filter 1 - (1 - h)^2 with h = 1 / (1 + 2 gamma lambda), flat to second order at
-   *  low frequencies where the paper's h falls linearly. It costs a second solve
-   *  (warm-started, so cheaper than the first). false = the paper's filter. */
+   *  low frequencies where the paper's h falls linearly. It costs a second solve of
+   *  about the first one's cost. false = the paper's filter. */
   inline void
   setShrinkageCorrection (bool correct) { shrinkage_correction_ = correct; }
 
