@@ -358,6 +358,30 @@ TEST (SmoothingQuality, ShrinkageCorrectionKeepsTheSphereRadius)
   EXPECT_LT (std::abs (shrink_corrected), 0.25 * shrink_plain);
 }
 
+TEST (SmoothingQuality, QuadricSurfaceBeatsThePlaneOnCurvedShapes)
+{
+  // A sparse sphere (curvature large against the spacing) and a bumpy height field.
+  auto sphere = std::make_shared<synthetic::Cloud> (synthetic::noisySphere (3000, 1.0, 0.02, 54));
+  for (int which = 0; which < 2; ++which)
+  {
+    GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
+    GraphTVSmoothing<pcl::PointXYZ> tv;
+    GraphSmoothing<pcl::PointXYZ> &filter =
+        which == 0 ? static_cast<GraphSmoothing<pcl::PointXYZ> &> (tikhonov) : tv;
+    EXPECT_EQ (filter.getLocalSurface (), LocalSurface::QUADRIC);
+    const double quadric = meanDistance (*run (filter, sphere), kToSphere);
+    const double quadric_gamma = filter.getUsedGamma ();
+    filter.setLocalSurface (LocalSurface::PLANE);
+    EXPECT_EQ (filter.getLocalSurface (), LocalSurface::PLANE);
+    const double plane = meanDistance (*run (filter, sphere), kToSphere);
+    std::printf ("%s on a sparse sphere: noisy %.5f, plane %.5f, quadric %.5f\n",
+                 which == 0 ? "Tikhonov" : "TV", meanDistance (*sphere, kToSphere), plane, quadric);
+    EXPECT_LT (quadric, 0.85 * plane);
+    // The data-derived gamma is halved with the quadric (it removes noise itself).
+    EXPECT_NEAR (quadric_gamma, 0.5 * filter.getUsedGamma (), 1e-12 * quadric_gamma);
+  }
+}
+
 TEST (SmoothingQuality, PaperFilterIsTheExactTikhonovSolve)
 {
   auto sphere = std::make_shared<synthetic::Cloud> (synthetic::noisySphere (3000, 1.0, 0.02, 53));
@@ -447,7 +471,11 @@ TEST (SmoothingQuality, ExplicitParametersAreUsed)
   EXPECT_EQ (filter.getUsedGamma (), 2.5);
   EXPECT_EQ (filter.getUsedSigma (), 0.05);
   EXPECT_FALSE (filter.getAutomaticGamma ());
-  EXPECT_EQ (filter.getEstimatedNoise (), 0.0);  // only the data-derived gamma needs it
+  EXPECT_GT (filter.getEstimatedNoise (), 0.0);  // the quadric fit's robust weights need it
+  filter.setLocalSurface (LocalSurface::PLANE);
+  run (filter, cloud);
+  EXPECT_EQ (filter.getEstimatedNoise (), 0.0);  // nothing else needs it
+  filter.setLocalSurface (LocalSurface::QUADRIC);
   filter.setSolver (core::TikhonovSolver::CONJUGATE_GRADIENT);
   filter.setTolerance (1e-10);
   const auto iterative = run (filter, cloud);
