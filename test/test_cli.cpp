@@ -1,0 +1,978 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ *
+ * The command-line tool (tools/pcl_graph_denoise), run as a program on clouds written
+ * by the tests: every field but x, y, z survives bit for bit, outlier removal splits the
+ * points between the output and the -removed file, parameters reach the filters, ASCII
+ * and binary, PCD and PLY; and every kind of bad input gives a one-line error, a
+ * non-zero exit code and no output file.
+ */
+#include <pcl_graph_denoise/graph_degree_outlier_removal.h>
+#include <pcl_graph_denoise/graph_tikhonov_smoothing.h>
+#include <pcl_graph_denoise/graph_tv_smoothing.h>
+
+#include "synthetic.h"
+
+#include <gtest/gtest.h>
+
+#include <pcl/PCLPointCloud2.h>
+#include <pcl/common/io.h>
+#include <pcl/console/print.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+extern char **environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using pcl::PCLPointCloud2;
+using pcl::PCLPointField;
+
+// --- Running the tool --------------------------------------------------------------------
+
+struct ToolRun
+{
+  int code = -1;
+  std::string out, err;
+};
+
+std::string
+readFile (const fs::path &path)
+{
+  std::ifstream in (path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf ();
+  return s.str ();
+}
+
+/** A fresh folder for one test, named after it. Also quiets PCL's warnings in the
+ *  test's own reading (one line per PLY property PCL does not handle). */
+fs::path
+testFolder ()
+{
+  pcl::console::setVerbosityLevel (pcl::console::L_ERROR);
+  const auto *info = ::testing::UnitTest::GetInstance ()->current_test_info ();
+  const fs::path dir = fs::path (PCL_GRAPH_DENOISE_CLI_WORK_DIR) /
+                       (std::string (info->test_suite_name ()) + "." + info->name ());
+  fs::remove_all (dir);
+  fs::create_directories (dir);
+  fs::create_directories (dir.string () + ".log");
+  return dir;
+}
+
+/** Runs the tool in `dir` (file names relative to it) and collects its exit code,
+ *  stdout and stderr. */
+ToolRun
+runTool (const fs::path &dir, const std::vector<std::string> &args)
+{
+  std::vector<std::string> words = {PCL_GRAPH_DENOISE_CLI};
+  words.insert (words.end (), args.begin (), args.end ());
+  std::vector<char *> argv;
+  for (auto &w : words)
+    argv.push_back (w.data ());
+  argv.push_back (nullptr);
+  const std::string out = dir.string () + ".log/stdout", err = dir.string () + ".log/stderr";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init (&actions);
+  posix_spawn_file_actions_addchdir_np (&actions, dir.c_str ());
+  posix_spawn_file_actions_addopen (&actions, 1, out.c_str (), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen (&actions, 2, err.c_str (), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  ToolRun run;
+  pid_t pid;
+  if (posix_spawn (&pid, argv[0], &actions, nullptr, argv.data (), environ) == 0)
+  {
+    int status = 0;
+    waitpid (pid, &status, 0);
+    run.code = WIFEXITED (status) ? WEXITSTATUS (status) : 128 + WTERMSIG (status);
+  }
+  posix_spawn_file_actions_destroy (&actions);
+  run.out = readFile (out);
+  run.err = readFile (err);
+  return run;
+}
+
+std::string
+describe (const std::vector<std::string> &args, const ToolRun &run)
+{
+  std::string text = "pcl_graph_denoise";
+  for (const auto &a : args)
+    text += " " + a;
+  return text + "\nexit " + std::to_string (run.code) + "\nstderr:\n" + run.err;
+}
+
+// --- Clouds ------------------------------------------------------------------------------
+
+/** A cloud with x, y, z of the given type and, around them, fields of many types whose
+ *  values are derived from the index: rgb (packed, opaque), normals, intensity, a unique
+ *  "id" (the original index, to match points after outlier removal), a 16-bit ring and a
+ *  double time stamp. */
+PCLPointCloud2
+makeCloud (const pcl::PointCloud<pcl::PointXYZ> &xyz, std::uint8_t coordinate_type,
+           std::uint32_t width, std::uint32_t height)
+{
+  PCLPointCloud2 cloud;
+  const std::uint32_t coordinate_size = coordinate_type == PCLPointField::FLOAT64 ? 8 : 4;
+  std::uint32_t offset = 0;
+  const auto add = [&] (const std::string &name, std::uint8_t type, std::uint32_t size) {
+    PCLPointField f;
+    f.name = name;
+    f.offset = offset;
+    f.datatype = type;
+    f.count = 1;
+    cloud.fields.push_back (f);
+    offset += size;
+  };
+  add ("x", coordinate_type, coordinate_size);
+  add ("y", coordinate_type, coordinate_size);
+  add ("z", coordinate_type, coordinate_size);
+  add ("rgb", PCLPointField::FLOAT32, 4);
+  add ("normal_x", PCLPointField::FLOAT32, 4);
+  add ("normal_y", PCLPointField::FLOAT32, 4);
+  add ("normal_z", PCLPointField::FLOAT32, 4);
+  add ("intensity", PCLPointField::FLOAT32, 4);
+  add ("id", PCLPointField::UINT32, 4);
+  add ("ring", PCLPointField::UINT16, 2);
+  add ("time", PCLPointField::FLOAT64, 8);
+  cloud.point_step = offset;
+  cloud.width = width;
+  cloud.height = height;
+  cloud.row_step = width * offset;
+  cloud.data.resize (std::size_t (cloud.row_step) * height);
+  cloud.is_dense = true;
+  for (std::size_t i = 0; i < xyz.size (); ++i)
+  {
+    std::uint8_t *p = cloud.data.data () + i * offset;
+    const auto put = [&] (std::size_t field, auto value) {
+      std::memcpy (p + cloud.fields[field].offset, &value, sizeof (value));
+    };
+    const auto &q = xyz[i];
+    if (coordinate_type == PCLPointField::FLOAT64)
+    {
+      // Doubles that are not floats: the tool must move them by a displacement.
+      put (0, double (q.x) + 1e-12 * double (i % 7));
+      put (1, double (q.y));
+      put (2, double (q.z));
+    }
+    else
+    {
+      put (0, q.x);
+      put (1, q.y);
+      put (2, q.z);
+    }
+    cloud.is_dense = cloud.is_dense && std::isfinite (q.x);
+    const std::uint32_t rgb =
+        0xff000000u | static_cast<std::uint32_t> ((i * 2654435761u) & 0xffffff);
+    float rgb_float;
+    std::memcpy (&rgb_float, &rgb, 4);
+    put (3, rgb_float);
+    put (4, static_cast<float> (std::sin (0.1 * i)));
+    put (5, static_cast<float> (std::cos (0.1 * i)));
+    put (6, 0.25f + 1e-3f * static_cast<float> (i % 100));
+    put (7, static_cast<float> (i % 1000) / 7.0f);
+    put (8, static_cast<std::uint32_t> (i));
+    put (9, static_cast<std::uint16_t> (i % 64));
+    put (10, 1.7e9 + 1e-3 * double (i));
+  }
+  return cloud;
+}
+
+/** A noisy unit sphere (2000 points, noise 1%) with 5% uniform outliers, unorganised. */
+PCLPointCloud2
+sphereWithOutliers (std::uint8_t coordinate_type = PCLPointField::FLOAT32)
+{
+  auto xyz = pcl_graph_denoise::synthetic::noisySphere (2000, 1.0, 0.01, 7);
+  pcl_graph_denoise::synthetic::addUniformOutliers (xyz, 0.05, 0.3, 8);
+  return makeCloud (xyz, coordinate_type, static_cast<std::uint32_t> (xyz.size ()), 1);
+}
+
+/** An organised 50 x 40 noisy plane (z = noise) with every 37th point NaN. */
+PCLPointCloud2
+organisedPlane (std::uint8_t coordinate_type = PCLPointField::FLOAT32)
+{
+  const std::uint32_t width = 50, height = 40;
+  auto xyz = pcl_graph_denoise::synthetic::noisyPlane (width * height, 0.01, 9);
+  // Grid order (an organised scan), noise kept from the generated cloud.
+  for (std::uint32_t r = 0; r < height; ++r)
+    for (std::uint32_t c = 0; c < width; ++c)
+    {
+      auto &p = xyz[r * width + c];
+      p.x = -1.0f + 2.0f * c / (width - 1);
+      p.y = -1.0f + 2.0f * r / (height - 1);
+      if ((r * width + c) % 37 == 5)
+        p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN ();
+    }
+  return makeCloud (xyz, coordinate_type, width, height);
+}
+
+void
+savePcd (const fs::path &path, const PCLPointCloud2 &cloud, bool binary = true)
+{
+  ASSERT_EQ (pcl::io::savePCDFile (path.string (), cloud, Eigen::Vector4f::Zero (),
+                                   Eigen::Quaternionf::Identity (), binary),
+             0);
+}
+
+void
+savePly (const fs::path &path, const PCLPointCloud2 &cloud, bool binary = true)
+{
+  ASSERT_EQ (pcl::io::savePLYFile (path.string (), cloud, Eigen::Vector4f::Zero (),
+                                   Eigen::Quaternionf::Identity (), binary),
+             0);
+}
+
+PCLPointCloud2
+load (const fs::path &path)
+{
+  PCLPointCloud2 cloud;
+  const std::string ext = path.extension ().string ();
+  const int rc = ext == ".ply" ? pcl::io::loadPLYFile (path.string (), cloud)
+                               : pcl::io::loadPCDFile (path.string (), cloud);
+  EXPECT_EQ (rc, 0) << path;
+  return cloud;
+}
+
+std::size_t
+size (const PCLPointCloud2 &cloud)
+{
+  return std::size_t (cloud.width) * cloud.height;
+}
+
+const PCLPointField *
+field (const PCLPointCloud2 &cloud, const std::string &name)
+{
+  for (const auto &f : cloud.fields)
+    if (f.name == name)
+      return &f;
+  return nullptr;
+}
+
+/** The bytes of a field of point i. */
+std::string
+bytes (const PCLPointCloud2 &cloud, std::size_t i, const PCLPointField &f)
+{
+  const std::size_t n = pcl::getFieldSize (f.datatype) * f.count;
+  const auto *p = cloud.data.data () + (i / cloud.width) * cloud.row_step +
+                  (i % cloud.width) * cloud.point_step + f.offset;
+  return std::string (reinterpret_cast<const char *> (p), n);
+}
+
+double
+coordinate (const PCLPointCloud2 &cloud, std::size_t i, const char *name)
+{
+  const PCLPointField &f = *field (cloud, name);
+  const std::string b = bytes (cloud, i, f);
+  if (f.datatype == PCLPointField::FLOAT64)
+  {
+    double v;
+    std::memcpy (&v, b.data (), 8);
+    return v;
+  }
+  float v;
+  std::memcpy (&v, b.data (), 4);
+  return v;
+}
+
+std::uint32_t
+id (const PCLPointCloud2 &cloud, std::size_t i)
+{
+  std::uint32_t v;
+  std::memcpy (&v, bytes (cloud, i, *field (cloud, "id")).data (), 4);
+  return v;
+}
+
+bool
+finite (const PCLPointCloud2 &cloud, std::size_t i)
+{
+  return std::isfinite (coordinate (cloud, i, "x")) && std::isfinite (coordinate (cloud, i, "y")) &&
+         std::isfinite (coordinate (cloud, i, "z"));
+}
+
+bool
+isCoordinate (const std::string &name)
+{
+  return name == "x" || name == "y" || name == "z";
+}
+
+/** How two clouds are compared: from and to the same binary format, every byte and
+ *  type. Between PCD and PLY, rgb goes through PLY's red, green and blue properties
+ *  (PCL's PLY writer drops the alpha byte of an rgb field, and its reader may type it
+ *  differently), and PCL's ASCII PCD writer declares a float rgb as TYPE U (same bits):
+ *  there only rgb's colour is compared. */
+enum class Formats
+{
+  SAME,
+  CROSSED
+};
+
+/** Colour bytes of an rgb field value. */
+std::uint32_t
+colour (const std::string &rgb_bytes)
+{
+  std::uint32_t v;
+  std::memcpy (&v, rgb_bytes.data (), 4);
+  return v & 0xffffffu;
+}
+
+/** Checks that `output` has the fields of `input` (same names, types, counts) and that
+ *  each of its points holds, in every field but x, y, z, the bytes of the input point
+ *  with the same id. Returns the input index of each output point. */
+std::vector<std::size_t>
+expectFieldsKept (const PCLPointCloud2 &input, const PCLPointCloud2 &output,
+                  Formats formats = Formats::SAME)
+{
+  const bool crossed = formats == Formats::CROSSED;
+  std::vector<std::size_t> origin;
+  EXPECT_EQ (pcl::getFieldsList (output), pcl::getFieldsList (input));
+  for (const auto &f : input.fields)
+  {
+    const PCLPointField *g = field (output, f.name);
+    if (!g)
+      continue;
+    if (!(crossed && f.name == "rgb"))
+      EXPECT_EQ (int (g->datatype), int (f.datatype)) << f.name;
+    EXPECT_EQ (g->count, f.count) << f.name;
+  }
+  std::map<std::uint32_t, std::size_t> by_id;
+  for (std::size_t i = 0; i < size (input); ++i)
+    by_id[id (input, i)] = i;
+  std::size_t mismatches = 0;
+  for (std::size_t i = 0; i < size (output); ++i)
+  {
+    const auto it = by_id.find (id (output, i));
+    if (it == by_id.end ())
+    {
+      ADD_FAILURE () << "output point " << i << " has an unknown id " << id (output, i);
+      return origin;
+    }
+    origin.push_back (it->second);
+    for (const auto &f : input.fields)
+    {
+      const PCLPointField *g = field (output, f.name);
+      if (isCoordinate (f.name) || !g)
+        continue;
+      const std::string a = bytes (input, it->second, f), b = bytes (output, i, *g);
+      const bool same = crossed && f.name == "rgb" ? colour (a) == colour (b) : a == b;
+      if (!same && mismatches++ < 5)
+        ADD_FAILURE () << "field " << f.name << " of point " << i << " (input " << it->second
+                       << ") changed";
+    }
+  }
+  EXPECT_EQ (mismatches, 0u);
+  return origin;
+}
+
+/** Mean distance to the unit sphere of the given points of a cloud. */
+double
+offSphere (const PCLPointCloud2 &cloud, const std::vector<std::size_t> &points)
+{
+  double sum = 0.0;
+  for (const auto i : points)
+    sum += std::abs (std::sqrt (std::pow (coordinate (cloud, i, "x"), 2) +
+                                std::pow (coordinate (cloud, i, "y"), 2) +
+                                std::pow (coordinate (cloud, i, "z"), 2)) -
+                     1.0);
+  return sum / double (points.size ());
+}
+
+/** Files in a folder. */
+std::set<std::string>
+filesIn (const fs::path &dir)
+{
+  std::set<std::string> names;
+  for (const auto &entry : fs::directory_iterator (dir))
+    names.insert (entry.path ().filename ().string ());
+  return names;
+}
+
+std::size_t
+lines (const std::string &text)
+{
+  return static_cast<std::size_t> (std::count (text.begin (), text.end (), '\n'));
+}
+
+/** Every option of the tool (steps, step parameters, the others). */
+const char *const every_option =
+    "-outliers -tikhonov -tv -radius -sigma -threshold_ratio -degree_threshold -outlier_fraction "
+    "-keep_organized -threads -k -gamma -graph_iterations -normal_displacement -local_surface "
+    "-shrinkage_correction -tolerance -max_iterations -solver -norm -removed -ascii -q";
+
+}  // namespace
+
+// --- Usage -------------------------------------------------------------------------------
+
+TEST (Cli, HelpListsEveryOptionWithItsDefault)
+{
+  const fs::path dir = testFolder ();
+  for (const char *h : {"-h", "--help"})
+  {
+    const ToolRun run = runTool (dir, {h});
+    ASSERT_EQ (run.code, 0) << run.err;
+    std::istringstream options (every_option);
+    std::string option;
+    while (options >> option)
+      EXPECT_TRUE (run.out.find ("  " + option + " ") != std::string::npos ||
+                   run.out.find ("  " + option + "\n") != std::string::npos)
+          << "-h does not list " << option;
+    // The defaults are the classes' own.
+    const pcl_graph_denoise::GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
+    const pcl_graph_denoise::GraphTVSmoothing<pcl::PointXYZ> tv;
+    const pcl_graph_denoise::GraphDegreeOutlierRemoval<pcl::PointXYZ> outliers;
+    std::ostringstream expected;
+    expected << "(default: " << tikhonov.getMaximumIterations () << " -tikhonov, "
+             << tv.getMaximumIterations () << " -tv)";
+    EXPECT_NE (run.out.find (expected.str ()), std::string::npos) << expected.str ();
+    expected.str ("");
+    expected << "(default: " << tikhonov.getTolerance () << " -tikhonov, " << tv.getTolerance ()
+             << " -tv)";
+    EXPECT_NE (run.out.find (expected.str ()), std::string::npos) << expected.str ();
+    expected.str ("");
+    expected << "(default: " << outliers.getAutomaticThresholdRatio () << ")";
+    EXPECT_NE (run.out.find (expected.str ()), std::string::npos) << expected.str ();
+    expected.str ("");
+    expected << "(default: " << tv.getKSearch () << ")";
+    EXPECT_NE (run.out.find (expected.str ()), std::string::npos) << expected.str ();
+    // Every option line of the step and other options sections tells its default.
+    std::istringstream text (run.out);
+    std::string line;
+    std::size_t option_lines = 0;
+    bool in_options = false;
+    while (std::getline (text, line))
+    {
+      if (line.find ("options") != std::string::npos && line.back () == ':')
+        in_options = true;
+      if (in_options && line.rfind ("  -", 0) == 0 && line.find ("-h, --help") == std::string::npos)
+      {
+        ++option_lines;
+        // The default is on the option's line or on the next ones.
+        std::string rest = line;
+        std::streampos at = text.tellg ();
+        std::string next;
+        for (int n = 0; n < 3 && std::getline (text, next) && next.rfind ("  -", 0) != 0; ++n)
+          rest += next;
+        text.seekg (at);
+        EXPECT_NE (rest.find ("default"), std::string::npos) << "no default for: " << line;
+      }
+    }
+    EXPECT_GE (option_lines, 22u);
+  }
+}
+
+// --- Fields, points and organisation -----------------------------------------------------
+
+TEST (Cli, DefaultChainKeepsEveryOtherFieldAndSplitsThePoints)
+{
+  const fs::path dir = testFolder ();
+  const PCLPointCloud2 input = sphereWithOutliers ();
+  savePcd (dir / "in.pcd", input);
+  const std::vector<std::string> args = {"in.pcd", "out.pcd", "-removed", "removed.pcd"};
+  const ToolRun run = runTool (dir, args);
+  ASSERT_EQ (run.code, 0) << describe (args, run);
+
+  const PCLPointCloud2 output = load (dir / "out.pcd"), removed = load (dir / "removed.pcd");
+  EXPECT_LT (size (output), size (input));
+  EXPECT_GT (size (removed), 0u);
+  EXPECT_EQ (size (output) + size (removed), size (input));
+  const auto kept = expectFieldsKept (input, output);
+  const auto gone = expectFieldsKept (input, removed);
+  std::set<std::size_t> all (kept.begin (), kept.end ());
+  all.insert (gone.begin (), gone.end ());
+  EXPECT_EQ (all.size (), size (input)) << "a point is in both files or in neither";
+  // Kept points keep their order.
+  EXPECT_TRUE (std::is_sorted (kept.begin (), kept.end ()));
+  // Most injected outliers (the last 100 points) are removed, few sphere points are.
+  const std::size_t surface = 2000;
+  const auto outliers_removed =
+      std::count_if (gone.begin (), gone.end (), [&] (std::size_t i) { return i >= surface; });
+  EXPECT_GT (outliers_removed, 60);
+  EXPECT_LT (gone.size () - static_cast<std::size_t> (outliers_removed), 40u);
+  // The smoothing moved the kept sphere points closer to the sphere.
+  std::vector<std::size_t> on_sphere_in, on_sphere_out;
+  for (std::size_t i = 0; i < kept.size (); ++i)
+    if (kept[i] < surface)
+    {
+      on_sphere_in.push_back (kept[i]);
+      on_sphere_out.push_back (i);
+    }
+  EXPECT_LT (offSphere (output, on_sphere_out), 0.8 * offSphere (input, on_sphere_in));
+
+  // The report: both steps, each with its time, the counts and the solver's figures.
+  EXPECT_EQ (run.out, "");
+  for (const char *part :
+       {"Loading ", "Step 1/2: -outliers (GraphDegreeOutlierRemoval), default chain",
+        "Step 2/2: -tv (GraphTVSmoothing), default chain", " ms]", "iterations, residual",
+        "converged", "Saving out.pcd (binary)", "Saving removed.pcd (binary)"})
+    EXPECT_NE (run.err.find (part), std::string::npos) << "report lacks '" << part << "':\n"
+                                                       << run.err;
+  const std::string counts = "removed " + std::to_string (size (removed)) + " of " +
+                             std::to_string (size (input)) + " points";
+  EXPECT_NE (run.err.find (counts), std::string::npos) << counts << "\n" << run.err;
+  // Nothing but the two outputs (and the input) in the folder.
+  EXPECT_EQ (filesIn (dir), (std::set<std::string>{"in.pcd", "out.pcd", "removed.pcd"}));
+}
+
+TEST (Cli, SmoothingKeepsSizeOrderOrganisationFieldsAndNonFinitePoints)
+{
+  const fs::path dir = testFolder ();
+  const PCLPointCloud2 input = organisedPlane ();
+  savePcd (dir / "in.pcd", input);
+  const std::vector<std::vector<std::string>> chains = {
+      {"-tv"}, {"-tikhonov"}, {"-tikhonov", "-tv"}, {"-tv", "-tv"}, {"-tv", "gamma=0.02,k=8"}};
+  for (const auto &chain : chains)
+  {
+    std::vector<std::string> args = {"in.pcd", "out.pcd"};
+    args.insert (args.end (), chain.begin (), chain.end ());
+    const ToolRun run = runTool (dir, args);
+    ASSERT_EQ (run.code, 0) << describe (args, run);
+    const PCLPointCloud2 output = load (dir / "out.pcd");
+    EXPECT_EQ (output.width, input.width);
+    EXPECT_EQ (output.height, input.height);
+    const auto origin = expectFieldsKept (input, output);
+    ASSERT_EQ (origin.size (), size (input));
+    std::size_t moved = 0, nan = 0;
+    for (std::size_t i = 0; i < origin.size (); ++i)
+    {
+      EXPECT_EQ (origin[i], i) << "points reordered";
+      if (!finite (input, i))
+      {
+        ++nan;
+        for (const char *c : {"x", "y", "z"})
+          EXPECT_EQ (bytes (output, i, *field (output, c)), bytes (input, i, *field (input, c)))
+              << "a non-finite point changed";
+        continue;
+      }
+      moved += coordinate (output, i, "z") != coordinate (input, i, "z");
+      EXPECT_LT (std::abs (coordinate (output, i, "z")), 0.1);
+    }
+    EXPECT_GT (nan, 0u);
+    EXPECT_GT (moved, origin.size () / 2) << describe (args, run);
+    const auto steps = std::count_if (chain.begin (), chain.end (), [] (const std::string &a) {
+      return a == "-tv" || a == "-tikhonov";
+    });
+    const std::string last = "Step " + std::to_string (steps) + "/" + std::to_string (steps) + ": ";
+    EXPECT_NE (run.err.find (last), std::string::npos) << run.err;
+  }
+}
+
+TEST (Cli, DoubleCoordinatesStayDoublesAndMoveByTheDisplacement)
+{
+  const fs::path dir = testFolder ();
+  const PCLPointCloud2 input = organisedPlane (PCLPointField::FLOAT64);
+  savePcd (dir / "in.pcd", input);
+  const std::vector<std::string> args = {"in.pcd", "out.pcd", "-tv"};
+  const ToolRun run = runTool (dir, args);
+  ASSERT_EQ (run.code, 0) << describe (args, run);
+  const PCLPointCloud2 output = load (dir / "out.pcd");
+  ASSERT_EQ (size (output), size (input));
+  EXPECT_EQ (int (field (output, "x")->datatype), int (PCLPointField::FLOAT64));
+  expectFieldsKept (input, output);
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < size (input); ++i)
+  {
+    if (!finite (input, i))
+      continue;
+    // x and y barely move on a plane (the normal is z): the double's digits beyond a
+    // float's survive.
+    const double dx = coordinate (output, i, "x") - coordinate (input, i, "x");
+    EXPECT_LT (std::abs (dx), 0.01);
+    moved += coordinate (output, i, "z") != coordinate (input, i, "z");
+  }
+  EXPECT_GT (moved, size (input) / 2);
+}
+
+TEST (Cli, GammaZeroIsTheIdentityInBothSyntaxes)
+{
+  const fs::path dir = testFolder ();
+  const PCLPointCloud2 input = organisedPlane ();
+  savePcd (dir / "in.pcd", input);
+  const std::vector<std::vector<std::string>> chains = {
+      {"-tv", "-gamma", "0"}, {"-tikhonov", "gamma=0,k=5"}, {"-gamma", "0", "-tv", "-tikhonov"}};
+  for (const auto &chain : chains)
+  {
+    std::vector<std::string> args = {"in.pcd", "out.pcd"};
+    args.insert (args.end (), chain.begin (), chain.end ());
+    const ToolRun run = runTool (dir, args);
+    ASSERT_EQ (run.code, 0) << describe (args, run);
+    const PCLPointCloud2 output = load (dir / "out.pcd");
+    ASSERT_EQ (size (output), size (input));
+    EXPECT_TRUE (output.data == input.data) << describe (args, run);
+    EXPECT_NE (run.err.find ("gamma 0"), std::string::npos) << run.err;
+    EXPECT_NE (run.err.find (" 0 moved"), std::string::npos) << run.err;
+  }
+  // And without it the same chains move points: the parameter made the difference.
+  const std::vector<std::string> args = {"in.pcd", "out.pcd", "-tikhonov", "k=5"};
+  const ToolRun run = runTool (dir, args);
+  ASSERT_EQ (run.code, 0) << describe (args, run);
+  EXPECT_FALSE (load (dir / "out.pcd").data == input.data);
+}
+
+TEST (Cli, OutlierParametersReachTheFilter)
+{
+  const fs::path dir = testFolder ();
+  const PCLPointCloud2 input = sphereWithOutliers ();
+  savePcd (dir / "in.pcd", input);
+  // The percentile rule removes exactly round(p x count) points; the removed points go
+  // to a PLY file, with all their fields.
+  for (const double p : {0.1, 0.03})
+  {
+    const std::vector<std::string> args = {
+        "in.pcd",           "out.pcd",  "-outliers",  "-outlier_fraction",
+        std::to_string (p), "-removed", "removed.ply"};
+    const ToolRun run = runTool (dir, args);
+    ASSERT_EQ (run.code, 0) << describe (args, run);
+    const PCLPointCloud2 output = load (dir / "out.pcd"), removed = load (dir / "removed.ply");
+    const auto expected_removed =
+        static_cast<std::size_t> (std::llround (p * double (size (input))));
+    EXPECT_EQ (size (removed), expected_removed);
+    EXPECT_EQ (size (output), size (input) - expected_removed);
+    // Outlier removal alone moves no point.
+    const auto kept = expectFieldsKept (input, output);
+    for (std::size_t i = 0; i < kept.size (); ++i)
+      for (const char *c : {"x", "y", "z"})
+        ASSERT_EQ (bytes (output, i, *field (output, c)),
+                   bytes (input, kept[i], *field (input, c)));
+    const auto gone = expectFieldsKept (input, removed, Formats::CROSSED);
+    std::set<std::size_t> all (kept.begin (), kept.end ());
+    all.insert (gone.begin (), gone.end ());
+    EXPECT_EQ (all.size (), size (input));
+  }
+  // A threshold of 0 removes nothing (there is no non-finite point): the removed file
+  // exists and is empty, in both formats.
+  for (const std::string removed_file : {"removed.pcd", "removed.ply"})
+  {
+    const std::vector<std::string> args = {
+        "in.pcd", "out.pcd", "-outliers", "degree_threshold=0", "-removed", removed_file};
+    const ToolRun run = runTool (dir, args);
+    ASSERT_EQ (run.code, 0) << describe (args, run);
+    EXPECT_EQ (size (load (dir / "out.pcd")), size (input));
+    ASSERT_TRUE (fs::exists (dir / removed_file));
+    PCLPointCloud2 removed;
+    if (removed_file == "removed.ply")
+      EXPECT_EQ (pcl::io::loadPLYFile ((dir / removed_file).string (), removed), 0);
+    else
+      pcl::io::loadPCDFile ((dir / removed_file).string (), removed);
+    EXPECT_EQ (size (removed), 0u);
+  }
+}
+
+TEST (Cli, OutliersOnAnOrganisedCloud)
+{
+  const fs::path dir = testFolder ();
+  const PCLPointCloud2 input = organisedPlane ();
+  savePcd (dir / "in.pcd", input);
+  std::size_t non_finite = 0;
+  for (std::size_t i = 0; i < size (input); ++i)
+    non_finite += !finite (input, i);
+
+  // Dropped: the non-finite points go with the outliers, the result is unorganised.
+  std::vector<std::string> args = {"in.pcd", "out.pcd",  "-outliers",  "-outlier_fraction",
+                                   "0.05",   "-removed", "removed.pcd"};
+  ToolRun run = runTool (dir, args);
+  ASSERT_EQ (run.code, 0) << describe (args, run);
+  PCLPointCloud2 output = load (dir / "out.pcd"), removed = load (dir / "removed.pcd");
+  const std::size_t outliers =
+      static_cast<std::size_t> (std::llround (0.05 * double (size (input) - non_finite)));
+  EXPECT_EQ (output.height, 1u);
+  EXPECT_EQ (size (removed), outliers + non_finite);
+  EXPECT_EQ (size (output) + size (removed), size (input));
+
+  // Kept organised: every point stays, the removed ones with a NaN x, y, z.
+  args = {"in.pcd",          "out.pcd", "-outliers", "-outlier_fraction", "0.05",
+          "-keep_organized", "1",       "-removed",  "removed.pcd"};
+  run = runTool (dir, args);
+  ASSERT_EQ (run.code, 0) << describe (args, run);
+  output = load (dir / "out.pcd");
+  removed = load (dir / "removed.pcd");
+  EXPECT_EQ (output.width, input.width);
+  EXPECT_EQ (output.height, input.height);
+  expectFieldsKept (input, output);
+  std::size_t nan = 0;
+  for (std::size_t i = 0; i < size (output); ++i)
+    nan += !finite (output, i);
+  EXPECT_EQ (nan, outliers + non_finite);
+  EXPECT_EQ (size (removed), outliers + non_finite);
+}
+
+// --- Formats -----------------------------------------------------------------------------
+
+TEST (Cli, AsciiAndBinaryOutputsHoldTheSameCloud)
+{
+  const fs::path dir = testFolder ();
+  const PCLPointCloud2 input = organisedPlane ();
+  savePcd (dir / "in.pcd", input);
+  const auto header = [&] (const char *name) { return readFile (dir / name).substr (0, 600); };
+  struct Case
+  {
+    std::vector<std::string> extra;
+    const char *file, *marker;
+  };
+  const std::vector<Case> cases = {
+      {{}, "binary.pcd", "DATA binary\n"},
+      {{"-ascii"}, "ascii.pcd", "DATA ascii\n"},
+      {{"-ascii", "1"}, "ascii1.pcd", "DATA ascii\n"},
+      {{"-ascii", "0"}, "binary0.pcd", "DATA binary\n"},
+      {{}, "binary.ply", "format binary_little_endian 1.0"},
+      {{"-ascii"}, "ascii.ply", "format ascii 1.0"},
+  };
+  for (const auto &c : cases)
+  {
+    // One gamma for all: the clouds compared below are the same smoothing.
+    std::vector<std::string> args = {"in.pcd", c.file, "-tv", "-gamma", "0.01", "-threads", "1"};
+    args.insert (args.end (), c.extra.begin (), c.extra.end ());
+    const ToolRun run = runTool (dir, args);
+    ASSERT_EQ (run.code, 0) << describe (args, run);
+    EXPECT_NE (header (c.file).find (c.marker), std::string::npos) << c.file << ":\n"
+                                                                   << header (c.file);
+    const PCLPointCloud2 output = load (dir / c.file);
+    EXPECT_EQ (size (output), size (input)) << c.file;
+    // The organisation too (PCL's PLY files keep it in their camera element).
+    EXPECT_EQ (output.width, input.width) << c.file;
+    EXPECT_EQ (output.height, input.height) << c.file;
+    const bool binary_pcd = std::string (c.marker) == "DATA binary\n";
+    expectFieldsKept (input, output, binary_pcd ? Formats::SAME : Formats::CROSSED);
+  }
+  // The ASCII files hold exactly the binary ones' values (floats written with 9 digits,
+  // doubles with 17).
+  const PCLPointCloud2 binary = load (dir / "binary.pcd"), ascii = load (dir / "ascii.pcd");
+  std::size_t different = 0;
+  for (std::size_t i = 0; i < size (binary); ++i)
+    for (const auto &f : binary.fields)
+    {
+      const std::string a = bytes (binary, i, f), b = bytes (ascii, i, *field (ascii, f.name));
+      const bool both_nan = isCoordinate (f.name) && !finite (binary, i) && !finite (ascii, i);
+      different += a != b && !both_nan;
+    }
+  EXPECT_EQ (different, 0u);
+}
+
+TEST (Cli, PlyInPlyAndPcdOut)
+{
+  const fs::path dir = testFolder ();
+  savePly (dir / "in.ply", sphereWithOutliers ());
+  savePly (dir / "in_ascii.ply", sphereWithOutliers (), false);
+  const PCLPointCloud2 input = load (dir / "in.ply");
+  ASSERT_EQ (size (input), 2100u);
+  ASSERT_NE (field (input, "intensity"), nullptr);
+  for (const char *in : {"in.ply", "in_ascii.ply"})
+    for (const char *out : {"out.ply", "out.pcd"})
+    {
+      // Compared with the input as PCL reads it (the test wrote in_ascii.ply with PCL's
+      // default precision, which rounds the doubles).
+      const PCLPointCloud2 input = load (dir / in);
+      const std::vector<std::string> args = {in, out, "-tikhonov"};
+      const ToolRun run = runTool (dir, args);
+      ASSERT_EQ (run.code, 0) << describe (args, run);
+      const PCLPointCloud2 output = load (dir / out);
+      ASSERT_EQ (size (output), size (input)) << out;
+      const auto origin = expectFieldsKept (input, output);
+      for (std::size_t i = 0; i < origin.size (); ++i)
+        ASSERT_EQ (origin[i], i);
+    }
+  // With the outliers removed, PLY to PLY, and the removed points in PLY too.
+  const std::vector<std::string> args = {"in.ply", "out.ply", "-outliers", "-removed", "gone.ply"};
+  const ToolRun run = runTool (dir, args);
+  ASSERT_EQ (run.code, 0) << describe (args, run);
+  const PCLPointCloud2 output = load (dir / "out.ply"), removed = load (dir / "gone.ply");
+  EXPECT_EQ (size (output) + size (removed), size (input));
+  EXPECT_GT (size (removed), 0u);
+  expectFieldsKept (input, output);
+  expectFieldsKept (input, removed);
+}
+
+TEST (Cli, QuietPrintsNothing)
+{
+  const fs::path dir = testFolder ();
+  savePcd (dir / "in.pcd", sphereWithOutliers ());
+  const std::vector<std::string> args = {"in.pcd", "out.pcd", "-q"};
+  const ToolRun run = runTool (dir, args);
+  ASSERT_EQ (run.code, 0) << describe (args, run);
+  EXPECT_EQ (run.out, "");
+  EXPECT_EQ (run.err, "");
+  EXPECT_TRUE (fs::exists (dir / "out.pcd"));
+}
+
+// --- Bad input ---------------------------------------------------------------------------
+
+/** Every failure: a non-zero exit code, one line on stderr, no output file, nothing
+ *  left in the folder but what was there. */
+TEST (Cli, BadInputFailsWithOneLineAndNoOutput)
+{
+  const fs::path dir = testFolder ();
+  const PCLPointCloud2 good = sphereWithOutliers ();
+  savePcd (dir / "good.pcd", good);
+  savePcd (dir / "good_ascii.pcd", good, false);
+  savePly (dir / "good.ply", good);
+  const std::string binary = readFile (dir / "good.pcd"), ascii = readFile (dir / "good_ascii.pcd"),
+                    ply = readFile (dir / "good.ply");
+  const auto write = [&] (const char *name, const std::string &content) {
+    std::ofstream (dir / name, std::ios::binary) << content;
+  };
+  write ("truncated.pcd", binary.substr (0, binary.size () / 2));
+  write ("truncated_header.pcd", binary.substr (0, 60));
+  write ("truncated_ascii.pcd", ascii.substr (0, ascii.size () * 2 / 3));
+  write ("truncated.ply", ply.substr (0, ply.size () / 2));
+  write ("text.pcd", "hello, this is not a point cloud\n");
+  write ("text.ply", "hello, this is not a point cloud\n");
+  std::string noise;
+  for (int i = 0; i < 3000; ++i)
+    noise += static_cast<char> ((i * 7919 + 13) % 256);
+  write ("noise.pcd", noise);
+  write ("noise.ply", noise);
+  write ("empty_file.pcd", "");
+  const std::string pcd_header = "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+                                 "COUNT 1 1 1\n";
+  write ("bad_type.pcd", "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F Q F\n"
+                         "COUNT 1 1 1\nWIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n1 2 3\n4 5 6\n");
+  write ("huge.pcd", pcd_header + "WIDTH 2000000000\nHEIGHT 1\nPOINTS 2000000000\nDATA binary\n"
+                                  "0123456789ab");
+  write ("no_xyz.pcd", "# .PCD v0.7\nVERSION 0.7\nFIELDS a b c\nSIZE 4 4 4\nTYPE F F F\n"
+                       "COUNT 1 1 1\nWIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n1 2 3\n4 5 6\n");
+  write ("integer_xyz.pcd", "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE I I I\n"
+                            "COUNT 1 1 1\nWIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n1 2 3\n4 5 6\n");
+  write ("no_xyz.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float a\n"
+                       "property float b\nend_header\n1 2\n3 4\n");
+  write ("empty.pcd", pcd_header + "WIDTH 0\nHEIGHT 1\nPOINTS 0\nDATA ascii\n");
+  write ("empty.ply", "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n"
+                      "property float y\nproperty float z\nend_header\n");
+  write ("all_nan.pcd",
+         pcd_header + "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\nnan nan nan\nnan nan nan\n");
+  write ("in.xyz", "1 2 3\n");
+  fs::create_directories (dir / "folder.pcd");
+
+  const std::vector<std::vector<std::string>> cases = {
+      // Files.
+      {"missing.pcd", "out.pcd"},
+      {"missing.ply", "out.ply"},
+      {"folder.pcd", "out.pcd"},
+      {"truncated.pcd", "out.pcd"},
+      {"truncated_header.pcd", "out.pcd"},
+      {"truncated_ascii.pcd", "out.pcd"},
+      {"truncated.ply", "out.ply"},
+      {"text.pcd", "out.pcd"},
+      {"text.ply", "out.pcd"},
+      {"noise.pcd", "out.pcd"},
+      {"noise.ply", "out.pcd"},
+      {"empty_file.pcd", "out.pcd"},
+      {"bad_type.pcd", "out.pcd"},
+      {"huge.pcd", "out.pcd"},
+      {"no_xyz.pcd", "out.pcd"},
+      {"integer_xyz.pcd", "out.pcd"},
+      {"no_xyz.ply", "out.pcd"},
+      {"empty.pcd", "out.pcd"},
+      {"empty.ply", "out.pcd"},
+      {"all_nan.pcd", "out.pcd"},
+      {"in.xyz", "out.pcd"},
+      {"good.pcd", "out.txt"},
+      {"good.pcd", "out"},
+      {"good.pcd", "missing_folder/out.pcd"},
+      {"good.pcd", "folder.pcd"},
+      {"good.pcd", "out.pcd", "-removed", "removed.xyz", "-outliers"},
+      // Command line.
+      {},
+      {"good.pcd"},
+      {"good.pcd", "out.pcd", "extra.pcd"},
+      {"good.pcd", "out.pcd", "-foo"},
+      {"good.pcd", "out.pcd", "--tv"},
+      {"good.pcd", "out.pcd", "-tv", "-gamma"},
+      {"good.pcd", "out.pcd", "-tv", "-gamma", "abc"},
+      {"good.pcd", "out.pcd", "-tv", "-gamma", "-1"},
+      {"good.pcd", "out.pcd", "-tv", "-gamma", "nan"},
+      {"good.pcd", "out.pcd", "-tv", "-gamma", "inf"},
+      {"good.pcd", "out.pcd", "-tv", "-gamma", "1e999"},
+      {"good.pcd", "out.pcd", "-tv", "-sigma", "-0.5"},
+      {"good.pcd", "out.pcd", "-tv", "-k", "0"},
+      {"good.pcd", "out.pcd", "-tv", "-k", "2.5"},
+      {"good.pcd", "out.pcd", "-tv", "-k", "-3"},
+      {"good.pcd", "out.pcd", "-tv", "-k", "99999999999"},
+      {"good.pcd", "out.pcd", "-tv", "-tolerance", "0"},
+      {"good.pcd", "out.pcd", "-tv", "-max_iterations", "0"},
+      {"good.pcd", "out.pcd", "-tv", "-graph_iterations", "x"},
+      {"good.pcd", "out.pcd", "-tv", "-normal_displacement", "maybe"},
+      {"good.pcd", "out.pcd", "-tv", "-norm", "euclidean"},
+      {"good.pcd", "out.pcd", "-tv", "-local_surface", "sphere"},
+      {"good.pcd", "out.pcd", "-tikhonov", "-solver", "lu"},
+      {"good.pcd", "out.pcd", "-tv", "-solver", "cg"},
+      {"good.pcd", "out.pcd", "-tv", "-threads", "-1"},
+      {"good.pcd", "out.pcd", "-tv", "gamma=abc"},
+      {"good.pcd", "out.pcd", "-tv", "gamma=0.1,foo=2"},
+      {"good.pcd", "out.pcd", "-tv", "gamma"},
+      {"good.pcd", "out.pcd", "-tv", "-gamma", "0.1", "-gamma", "0.2"},
+      {"good.pcd", "out.pcd", "-outliers", "-outlier_fraction", "1.5"},
+      {"good.pcd", "out.pcd", "-outliers", "-radius", "-2"},
+      {"good.pcd", "out.pcd", "-outliers", "-degree_threshold", "1", "-outlier_fraction", "0.1"},
+      {"good.pcd", "out.pcd", "-outliers", "-gamma", "0.1"},
+      {"good.pcd", "out.pcd", "-outliers", "-keep_organized", "2"},
+      {"good.pcd", "out.pcd", "-k", "5", "-outliers"},
+      {"good.pcd", "out.pcd", "-tv", "-removed", "removed.pcd"},
+      {"good.pcd", "out.pcd", "-outliers", "-removed", "out.pcd"},
+      {"good.pcd", "out.pcd", "-outliers", "-removed", "./out.pcd"},
+      {"good.pcd", "out.pcd", "-degree_threshold", "1", "-outlier_fraction", "0.1", "-outliers"},
+      {"good.pcd", "out.pcd", "-outliers", "-removed"},
+  };
+  const std::set<std::string> before = filesIn (dir);
+  for (const auto &args : cases)
+  {
+    const ToolRun run = runTool (dir, args);
+    const std::string what = describe (args, run);
+    EXPECT_NE (run.code, 0) << what;
+    EXPECT_LT (run.code, 128) << "crashed: " << what;
+    EXPECT_EQ (lines (run.err), 1u) << what;
+    EXPECT_EQ (run.err.rfind ("pcl_graph_denoise: error: ", 0), 0u) << what;
+    EXPECT_GT (run.err.size (), std::string ("pcl_graph_denoise: error: ").size () + 10) << what;
+    EXPECT_EQ (filesIn (dir), before) << "files left behind by: " << what;
+  }
+
+  // A chain that removes every point fails after reporting its steps: the error is one
+  // line, the last.
+  for (const auto &args : std::vector<std::vector<std::string>>{
+           {"good.pcd", "out.pcd", "-outliers", "-outlier_fraction", "1", "-removed", "gone.pcd"},
+           {"good.pcd", "out.pcd", "-outliers", "-outlier_fraction", "1", "-tv"}})
+  {
+    const ToolRun run = runTool (dir, args);
+    const std::string what = describe (args, run);
+    EXPECT_EQ (run.code, 1) << what;
+    const auto error = run.err.find ("pcl_graph_denoise: error: ");
+    ASSERT_NE (error, std::string::npos) << what;
+    EXPECT_EQ (lines (run.err.substr (error)), 1u) << what;
+    EXPECT_EQ (run.err.back (), '\n') << what;
+    EXPECT_EQ (filesIn (dir), before) << "files left behind by: " << what;
+  }
+
+  // An existing output survives a failed run unchanged.
+  write ("existing.pcd", "old content");
+  const ToolRun run = runTool (dir, {"truncated.pcd", "existing.pcd"});
+  EXPECT_EQ (run.code, 1);
+  EXPECT_EQ (readFile (dir / "existing.pcd"), "old content");
+}
+
+TEST (Cli, InvalidCommandLinesExitWithTwoUnreadableInputWithOne)
+{
+  const fs::path dir = testFolder ();
+  savePcd (dir / "good.pcd", sphereWithOutliers ());
+  EXPECT_EQ (runTool (dir, {"good.pcd", "out.pcd", "-tv", "-gamma", "abc"}).code, 2);
+  EXPECT_EQ (runTool (dir, {"good.pcd", "out.xyz"}).code, 2);
+  EXPECT_EQ (runTool (dir, {"missing.pcd", "out.pcd"}).code, 1);
+  const ToolRun run = runTool (dir, {"good.pcd", "out.pcd", "-tv", "-gamma", "-1"});
+  EXPECT_NE (run.err.find ("-gamma"), std::string::npos) << run.err;
+  EXPECT_NE (run.err.find (">= 0"), std::string::npos) << run.err;
+}

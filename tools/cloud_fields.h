@@ -1,0 +1,66 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#pragma once
+
+#include <pcl/PCLPointCloud2.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <string>
+
+namespace pcl_graph_denoise {
+namespace tools {
+
+/** \brief The x, y and z fields of a pcl::PCLPointCloud2 (FLOAT32 or FLOAT64, one value
+ *  each), the only bytes of it that the tool rewrites. */
+class XyzFields
+{
+public:
+  /** \brief Finds x, y and z in a cloud.
+   *  \throws Error (naming `source`) if one is missing or is not a single float or double. */
+  XyzFields (const pcl::PCLPointCloud2 &cloud, const std::string &source);
+
+  /** \brief The positions as floats, with the cloud's width, height and density. */
+  pcl::PointCloud<pcl::PointXYZ>::Ptr
+  extract (const pcl::PCLPointCloud2 &cloud) const;
+
+  /** \brief Moves the points of `cloud` where `after` differs from `before` (both from
+   *  extract() and the filter): a float field receives the new value, a double field its
+   *  value plus the displacement, so that a point that did not move keeps its exact
+   *  bytes. Returns the number of points moved. */
+  std::size_t
+  writeBack (pcl::PCLPointCloud2 &cloud, const pcl::PointCloud<pcl::PointXYZ> &before,
+             const pcl::PointCloud<pcl::PointXYZ> &after) const;
+
+  /** \brief Sets x, y and z of the point `index` to NaN. */
+  void
+  setNaN (pcl::PCLPointCloud2 &cloud, std::size_t index) const;
+
+private:
+  struct Field
+  {
+    std::uint32_t offset;
+    std::uint8_t datatype;
+  };
+  Field field_[3];
+};
+
+/** \brief Byte address of point `index` (row-major over width x height) in a cloud. */
+std::uint8_t *
+pointData (pcl::PCLPointCloud2 &cloud, std::size_t index);
+const std::uint8_t *
+pointData (const pcl::PCLPointCloud2 &cloud, std::size_t index);
+
+/** \brief A cloud with the same fields and metadata as `cloud` holding its points
+ *  `indices` in that order, unorganised (height 1). */
+pcl::PCLPointCloud2
+selectPoints (const pcl::PCLPointCloud2 &cloud, const pcl::Indices &indices);
+
+/** \brief Appends the points of `more` (same fields) to `cloud`, unorganised. */
+void
+appendPoints (pcl::PCLPointCloud2 &cloud, const pcl::PCLPointCloud2 &more);
+
+}  // namespace tools
+}  // namespace pcl_graph_denoise

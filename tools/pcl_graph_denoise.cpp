@@ -1,0 +1,437 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ *
+ * The command-line tool: reads a .pcd or .ply file with all its fields, runs a chain of
+ * the library's filters on its x, y, z (outlier removal, Tikhonov and TV smoothing, in
+ * the order given) and writes the result with every other field untouched.
+ *
+ *   pcl_graph_denoise input.{pcd,ply} output.{pcd,ply} [options] [step [step options]]...
+ *
+ * See usage() in options.cpp (or run with -h) for the options.
+ */
+#include "cloud_fields.h"
+#include "cloud_io.h"
+#include "options.h"
+#include "stderr_capture.h"
+
+#include <pcl_graph_denoise/graph_degree_outlier_removal.h>
+#include <pcl_graph_denoise/graph_tikhonov_smoothing.h>
+#include <pcl_graph_denoise/graph_tv_smoothing.h>
+
+#include <pcl/common/io.h>
+#include <pcl/console/print.h>
+#include <pcl/console/time.h>
+
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <new>
+#include <string>
+
+using namespace pcl_graph_denoise::tools;
+using pcl::console::print_highlight;
+using pcl::console::print_info;
+using pcl::console::print_value;
+
+namespace {
+
+using Cloud = pcl::PointCloud<pcl::PointXYZ>;
+
+const char *const program = "pcl_graph_denoise";
+
+/** The report of what the tool does, on stderr; silent with -q. */
+bool quiet = false;
+
+template <typename... Args>
+void
+highlight (const char *format, Args... args)
+{
+  if (!quiet)
+    print_highlight (stderr, format, args...);
+}
+
+template <typename... Args>
+void
+info (const char *format, Args... args)
+{
+  if (!quiet)
+    print_info (stderr, format, args...);
+}
+
+template <typename... Args>
+void
+value (const char *format, Args... args)
+{
+  if (!quiet)
+    print_value (stderr, format, args...);
+}
+
+std::size_t
+countFinite (const Cloud &cloud)
+{
+  std::size_t n = 0;
+  for (const auto &p : cloud)
+    n += std::isfinite (p.x) && std::isfinite (p.y) && std::isfinite (p.z);
+  return n;
+}
+
+/** "step 2/3 (-tv)", for messages. */
+std::string
+stepName (const Options &options, std::size_t s)
+{
+  return "step " + std::to_string (s + 1) + "/" + std::to_string (options.steps.size ()) + " (" +
+         stepOption (options.steps[s].kind) + ")";
+}
+
+/** The parameters set for a step, as given: "-gamma 0.01, -k 12". */
+std::string
+describeParameters (const Step &step)
+{
+  std::string text;
+  for (const auto &[name, v] : step.parameters)
+  {
+    char number[64];
+    std::snprintf (number, sizeof (number), "%g", v.number);
+    text += (text.empty () ? "-" : ", -") + name + " " + (v.text.empty () ? number : v.text);
+  }
+  return text.empty () ? "none, the filter's defaults" : text;
+}
+
+/** Passes on what a filter printed (warnings) once it is done. */
+void
+forward (const std::string &captured)
+{
+  if (!captured.empty ())
+    std::fputs (captured.c_str (), stderr);
+}
+
+void
+configure (pcl_graph_denoise::GraphDegreeOutlierRemoval<pcl::PointXYZ> &filter, const Step &step)
+{
+  for (const auto &[name, v] : step.parameters)
+  {
+    if (name == "radius")
+      filter.setRadiusSearch (v.number);
+    else if (name == "sigma")
+      filter.setSigma (v.number);
+    else if (name == "threshold_ratio")
+      filter.setAutomaticThresholdRatio (v.number);
+    else if (name == "degree_threshold")
+      filter.setDegreeThreshold (v.number);
+    else if (name == "outlier_fraction")
+      filter.setOutlierFraction (v.number);
+    else if (name == "threads")
+      filter.setNumberOfThreads (static_cast<int> (v.number));
+  }
+}
+
+void
+configure (pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &filter, const Step &step)
+{
+  for (const auto &[name, v] : step.parameters)
+  {
+    if (name == "k")
+      filter.setKSearch (static_cast<int> (v.number));
+    else if (name == "sigma")
+      filter.setSigma (v.number);
+    else if (name == "gamma")
+    {
+      if (v.text == "auto")
+        filter.setAutomaticGamma ();
+      else
+        filter.setGamma (v.number);
+    }
+    else if (name == "graph_iterations")
+      filter.setGraphIterations (static_cast<int> (v.number));
+    else if (name == "normal_displacement")
+      filter.setNormalDisplacement (v.number != 0.0);
+    else if (name == "local_surface")
+      filter.setLocalSurface (v.text == "plane" ? pcl_graph_denoise::LocalSurface::PLANE
+                                                : pcl_graph_denoise::LocalSurface::QUADRIC);
+    else if (name == "shrinkage_correction")
+      filter.setShrinkageCorrection (v.number != 0.0);
+    else if (name == "tolerance")
+      filter.setTolerance (v.number);
+    else if (name == "max_iterations")
+      filter.setMaximumIterations (static_cast<int> (v.number));
+    else if (name == "threads")
+      filter.setNumberOfThreads (static_cast<int> (v.number));
+  }
+}
+
+/** Removes the outliers of `cloud` (whole points); the removed ones go to `removed`. */
+void
+removeOutliers (const Options &options, std::size_t s, const XyzFields &xyz,
+                pcl::PCLPointCloud2 &cloud, pcl::PCLPointCloud2 &removed)
+{
+  const Step &step = options.steps[s];
+  pcl_graph_denoise::GraphDegreeOutlierRemoval<pcl::PointXYZ> filter (true);
+  configure (filter, step);
+  const Cloud::Ptr input = xyz.extract (cloud);
+  const std::size_t finite = countFinite (*input);
+  filter.setInputCloud (input);
+  pcl::Indices kept;
+  std::string captured;
+  {
+    StderrCapture capture;
+    filter.filter (kept);
+    captured = capture.release ();
+  }
+  const pcl::Indices &gone = *filter.getRemovedIndices ();
+  if (kept.size () + gone.size () != input->size ())
+  {
+    const std::string why = mainMessage (captured);
+    throw Error (stepName (options, s) + " failed" + (why.empty () ? "" : ": " + why));
+  }
+  forward (captured);
+
+  appendPoints (removed, selectPoints (cloud, gone));
+  const bool keep_organized =
+      step.has ("keep_organized") && step.parameters.at ("keep_organized").number != 0.0;
+  if (keep_organized)
+  {
+    for (const auto index : gone)
+      xyz.setNaN (cloud, static_cast<std::size_t> (index));
+  }
+  else
+    cloud = selectPoints (cloud, kept);
+
+  const char *rule = "";
+  switch (filter.getThresholdRule ())
+  {
+  case pcl_graph_denoise::GraphDegreeOutlierRemoval<pcl::PointXYZ>::AUTOMATIC_THRESHOLD:
+    rule = "threshold_ratio x first quartile";
+    break;
+  case pcl_graph_denoise::GraphDegreeOutlierRemoval<pcl::PointXYZ>::ABSOLUTE_THRESHOLD:
+    rule = "degree_threshold";
+    break;
+  case pcl_graph_denoise::GraphDegreeOutlierRemoval<pcl::PointXYZ>::OUTLIER_FRACTION:
+    rule = "outlier_fraction";
+    break;
+  }
+  info ("  removed ");
+  value ("%zu", gone.size ());
+  info (" of ");
+  value ("%zu", input->size ());
+  info (" points (");
+  value ("%zu", input->size () - finite);
+  info (" with a non-finite x, y, z)%s -> ", keep_organized ? ", kept as NaN" : "");
+  value ("%zu", std::size_t (cloud.width) * cloud.height);
+  info (" points\n  used: radius ");
+  value ("%g", filter.getUsedRadius ());
+  info (", sigma ");
+  value ("%g", filter.getUsedSigma ());
+  info (", degree threshold ");
+  value ("%g", filter.getUsedDegreeThreshold ());
+  info (" (%s)\n", rule);
+}
+
+/** Smooths x, y, z of `cloud` with a GraphTikhonovSmoothing or GraphTVSmoothing. */
+void
+smooth (const Options &options, std::size_t s, const XyzFields &xyz, pcl::PCLPointCloud2 &cloud)
+{
+  const Step &step = options.steps[s];
+  pcl_graph_denoise::GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
+  pcl_graph_denoise::GraphTVSmoothing<pcl::PointXYZ> tv;
+  pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &filter =
+      step.kind == StepKind::TIKHONOV
+          ? static_cast<pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &> (tikhonov)
+          : tv;
+  configure (filter, step);
+  if (step.has ("solver"))
+    tikhonov.setSolver (step.parameters.at ("solver").text == "cholmod"
+                            ? pcl_graph_denoise::core::TikhonovSolver::CHOLMOD
+                            : pcl_graph_denoise::core::TikhonovSolver::CONJUGATE_GRADIENT);
+  if (step.has ("norm"))
+    tv.setNorm (step.parameters.at ("norm").text == "anisotropic"
+                    ? pcl_graph_denoise::core::TotalVariationNorm::ANISOTROPIC
+                    : pcl_graph_denoise::core::TotalVariationNorm::ISOTROPIC);
+
+  const Cloud::Ptr input = xyz.extract (cloud);
+  const std::size_t finite = countFinite (*input);
+  if (finite == 0)
+    throw Error (stepName (options, s) + ": no point with a finite x, y, z is left to smooth");
+  filter.setInputCloud (input);
+  Cloud output;
+  std::string captured;
+  {
+    StderrCapture capture;
+    filter.filter (output);
+    captured = capture.release ();
+  }
+  if (output.size () != input->size ())
+  {
+    const std::string why = mainMessage (captured);
+    throw Error (stepName (options, s) + " failed" + (why.empty () ? "" : ": " + why));
+  }
+  forward (captured);
+  const std::size_t moved = xyz.writeBack (cloud, *input, output);
+
+  const auto &report = filter.getSolverReport ();
+  info ("  ");
+  value ("%zu", input->size ());
+  info (" points (");
+  value ("%zu", finite);
+  info (" finite), ");
+  value ("%zu", moved);
+  info (" moved");
+  if (cloud.height > 1)
+  {
+    info (", organised ");
+    value ("%u x %u", cloud.width, cloud.height);
+    info (" kept");
+  }
+  info ("\n  used: sigma ");
+  value ("%g", filter.getUsedSigma ());
+  info (", gamma ");
+  value ("%g", filter.getUsedGamma ());
+  if (filter.getAutomaticGamma ())
+  {
+    info (" (derived, estimated noise ");
+    value ("%g", filter.getEstimatedNoise ());
+    info ("%s)", filter.getGraphIterations () > 1 ? " in the first pass" : "");
+  }
+  info ("\n  solver%s: ", filter.getGraphIterations () > 1 ? " (last pass)" : "");
+  value ("%d", report.iterations);
+  info (" iterations, residual ");
+  value ("%.3g", report.residual);
+  info (", %s\n", report.converged ? "converged" : "NOT converged (tolerance not reached)");
+}
+
+/** Recomputes is_dense: true when every point has a finite x, y, z. */
+void
+updateDensity (const XyzFields &xyz, pcl::PCLPointCloud2 &cloud)
+{
+  cloud.is_dense = cloud.width * cloud.height == 0 || xyz.extract (cloud)->is_dense;
+}
+
+int
+fail (const std::string &message, int code)
+{
+  pcl::console::print_error (stderr, "%s: error: %s\n", program, printable (message, 400).c_str ());
+  return code;
+}
+
+int
+run (const Options &options)
+{
+  pcl::console::TicToc total;
+  total.tic ();
+  PendingFiles::checkWritable (options.output);
+  if (!options.removed.empty ())
+    PendingFiles::checkWritable (options.removed);
+
+  pcl::console::TicToc timer;
+  timer.tic ();
+  CloudFile file = loadCloud (options.input);
+  const XyzFields xyz (file.cloud, options.input);
+  const std::size_t size = std::size_t (file.cloud.width) * file.cloud.height;
+  const std::size_t finite = countFinite (*xyz.extract (file.cloud));
+  if (finite == 0)
+    throw Error (options.input + ": no point has a finite x, y, z");
+  highlight ("Loading ");
+  value ("%s ", options.input.c_str ());
+  info ("[done, ");
+  value ("%g", timer.toc ());
+  info (" ms : ");
+  value ("%zu", size);
+  info (" points, ");
+  if (file.cloud.height > 1)
+  {
+    info ("organised ");
+    value ("%u x %u", file.cloud.width, file.cloud.height);
+    info (", ");
+  }
+  value ("%zu", finite);
+  info (" with a finite x, y, z]\n  Available dimensions: ");
+  value ("%s\n", pcl::getFieldsList (file.cloud).c_str ());
+
+  pcl::PCLPointCloud2 removed;
+  for (std::size_t s = 0; s < options.steps.size (); ++s)
+  {
+    const Step &step = options.steps[s];
+    highlight ("Step %zu/%zu: ", s + 1, options.steps.size ());
+    value ("%s", stepOption (step.kind));
+    info (" (%s)%s, parameters set: %s\n", stepClass (step.kind),
+          options.default_chain ? ", default chain" : "", describeParameters (step).c_str ());
+    timer.tic ();
+    if (step.kind == StepKind::OUTLIERS)
+      removeOutliers (options, s, xyz, file.cloud, removed);
+    else
+      smooth (options, s, xyz, file.cloud);
+    info ("  [done, ");
+    value ("%g", timer.toc ());
+    info (" ms]\n");
+  }
+  if (file.cloud.width * file.cloud.height == 0)
+    throw Error ("no point is left after the steps: nothing to write");
+
+  PendingFiles outputs;
+  const auto save = [&] (const std::string &path, const CloudFile &cloud) {
+    timer.tic ();
+    outputs.write (path, cloud, options.binary);
+    highlight ("Saving ");
+    value ("%s ", path.c_str ());
+    info ("(%s) [done, ", options.binary ? "binary" : "ASCII");
+    value ("%g", timer.toc ());
+    info (" ms : ");
+    value ("%u", cloud.cloud.width * cloud.cloud.height);
+    info (" points]\n");
+  };
+  updateDensity (xyz, file.cloud);
+  save (options.output, file);
+  if (!options.removed.empty ())
+  {
+    CloudFile gone;
+    gone.cloud = removed.fields.empty () ? selectPoints (file.cloud, {}) : removed;
+    gone.origin = file.origin;
+    gone.orientation = file.orientation;
+    updateDensity (xyz, gone.cloud);
+    save (options.removed, gone);
+  }
+  outputs.commit ();
+  highlight ("Done in ");
+  value ("%g", total.toc ());
+  info (" ms\n");
+  return 0;
+}
+
+}  // namespace
+
+int
+main (int argc, char **argv)
+{
+  Options options;
+  try
+  {
+    options = parseCommandLine (argc, argv);
+  }
+  catch (const UsageError &e)
+  {
+    return fail (e.what (), 2);
+  }
+  if (options.help)
+  {
+    std::fputs (usage (program).c_str (), stdout);
+    return 0;
+  }
+  quiet = options.quiet;
+  pcl::console::setVerbosityLevel (quiet ? pcl::console::L_WARN : pcl::console::L_INFO);
+  try
+  {
+    return run (options);
+  }
+  catch (const Error &e)
+  {
+    return fail (e.what (), 1);
+  }
+  catch (const std::bad_alloc &)
+  {
+    return fail ("out of memory", 1);
+  }
+  catch (const std::exception &e)
+  {
+    return fail (e.what (), 1);
+  }
+}
