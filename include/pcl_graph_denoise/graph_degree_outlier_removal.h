@@ -160,6 +160,12 @@ protected:
   void
   applyFilter (pcl::Indices &indices) override;
 
+  /** \brief pcl::FilterIndices' output (kept points, or with setKeepOrganized(true) the
+   *  cloud with the removed points replaced), empty after an error: PCL's organised
+   *  path would return a copy of the whole input. */
+  void
+  applyFilter (PointCloud &output) override;
+
 private:
   /** Default epsilon and theta as multiples of the spacing, and the default ratio: chosen
    *  on noisy spheres and cubes with 5% and 20% uniform outliers (100k and 1M points,
@@ -183,6 +189,7 @@ private:
   double used_radius_ = 0.0;
   double used_sigma_ = 0.0;
   double used_threshold_ = 0.0;
+  bool failed_ = false;  ///< the last applyFilter (indices) reported an error
 };
 
 } // namespace pcl_graph_denoise

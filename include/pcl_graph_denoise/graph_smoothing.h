@@ -93,7 +93,7 @@ public:
   getAutomaticGamma () const { return automatic_gamma_; }
 
   /** \brief Number of passes: each pass rebuilds the graph on the previous pass's output
-   *  and denoises it again (the paper's re-graphing). Default 1. Valid: >= 1. */
+   *  and denoises it again (the paper's re-graphing). Default 1. Valid: 1 to 1000. */
   inline void
   setGraphIterations (int n) { graph_iterations_ = n; }
 

@@ -88,7 +88,11 @@ solveTikhonovCholmod (const PointGraph &graph, const Signal3 &f, double gamma)
 
   cholmod_factor *factor = cholmod_l_analyze (a, c);
   const bool analysed = factor != nullptr && c->status >= CHOLMOD_OK;
-  const bool factorised = analysed && cholmod_l_factorize (a, factor, c) && c->status >= CHOLMOD_OK;
+  // A huge gamma x degree makes I + 2 gamma L numerically singular: CHOLMOD then only
+  // warns (CHOLMOD_NOT_POSDEF, factor->minor < n) and its solve would be inf or NaN.
+  const bool factorised_any = analysed && cholmod_l_factorize (a, factor, c) && c->status >= CHOLMOD_OK;
+  const bool not_positive_definite = factorised_any && factor->minor < n;
+  const bool factorised = factorised_any && !not_positive_definite;
   cholmod_dense *x = factorised ? cholmod_l_solve (CHOLMOD_A, factor, b, c) : nullptr;
   Signal3 out;
   const bool solved = x != nullptr && c->status >= CHOLMOD_OK;
@@ -105,6 +109,9 @@ solveTikhonovCholmod (const PointGraph &graph, const Signal3 &f, double gamma)
   cholmod_l_free_factor (&factor, c);
   cholmod_l_free_dense (&b, c);
   cholmod_l_free_sparse (&a, c);
+  if (not_positive_definite)
+    throw std::runtime_error ("CHOLMOD: the Tikhonov system is not numerically positive "
+                              "definite (gamma x degree too large for double precision)");
   if (!solved)
     throw std::runtime_error ("CHOLMOD could not factorise or solve the Tikhonov system (status " +
                               std::to_string (status) + ")");

@@ -8,9 +8,12 @@
 #include "parallel.h"
 #include "spatial_order.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <numeric>
@@ -31,6 +34,11 @@ requireValid (bool ok, const std::string &what)
     throw std::invalid_argument (what);
 }
 
+/** Largest extent of the points along an axis: the neighbour search computes squared
+ *  distances in single precision, which overflow (and lose every neighbour) beyond about
+ *  1.8e19. */
+constexpr double kMaxExtent = 1e18;
+
 void
 validatePoints (const PointMatrix &points)
 {
@@ -38,6 +46,44 @@ validatePoints (const PointMatrix &points)
                     std::numeric_limits<VertexIndex>::max (),
                 "too many points for 32-bit vertex indices");
   requireValid (points.allFinite (), "points must be finite");
+  if (points.rows () == 0)
+    return;
+  const Eigen::Vector3d extent = points.colwise ().maxCoeff ().cast<double> ().transpose () -
+                                 points.colwise ().minCoeff ().cast<double> ().transpose ();
+  if (!(extent.maxCoeff () <= kMaxExtent))
+  {
+    char text[160];
+    std::snprintf (text, sizeof (text),
+                   "the points span %g units along an axis, more than %g: their squared "
+                   "distances would overflow single precision",
+                   extent.maxCoeff (), kMaxExtent);
+    throw std::invalid_argument (text);
+  }
+}
+
+/** Fails before allocating a graph that cannot fit in this machine's memory (a huge k
+ *  asks for the complete graph: N^2 entries). */
+void
+requireGraphMemory (std::size_t n, std::size_t k)
+{
+  // Per directed entry: the k-NN list and its transpose (4 + 4 bytes), and at most two
+  // stored entries of the symmetric graph (2 x (4 + 4) bytes).
+  const long double bytes = 24.0L * n * k;
+#ifdef _SC_PHYS_PAGES
+  const long pages = ::sysconf (_SC_PHYS_PAGES), page = ::sysconf (_SC_PAGE_SIZE);
+  const long double memory = pages > 0 && page > 0 ? (long double) pages * page : 0.0L;
+#else
+  const long double memory = 0.0L;
+#endif
+  if (memory > 0.0L && bytes > memory)
+  {
+    char text[200];
+    std::snprintf (text, sizeof (text),
+                   "the graph of %zu points with k = %zu neighbours would need about %.3g GB, "
+                   "more than the %.3g GB of memory of this machine: lower k",
+                   n, k, double (bytes / 1e9L), double (memory / 1e9L));
+    throw std::invalid_argument (text);
+  }
 }
 
 void
@@ -247,6 +293,7 @@ buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params)
     return graph;
 
   const int k = static_cast<int> (std::min<std::size_t> (params.k, n - 1));
+  requireGraphMemory (n, static_cast<std::size_t> (k));
   const detail::KdTree tree (ordered);
   DirectedLists directed;
   const std::vector<double> mean = meanKnnDistances (tree, n, k, params.num_threads, &directed);

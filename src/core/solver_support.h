@@ -11,6 +11,7 @@
 #include "parallel.h"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace pcl_graph_denoise {
@@ -84,6 +85,21 @@ requireSolverInput (const PointGraph &graph, const Signal3 &f, double gamma, int
     throw std::invalid_argument ("num_threads must be >= 0");
   if (!f.allFinite ())
     throw std::invalid_argument ("the signal must be finite");
+}
+
+/** Throws std::runtime_error when a solver's result is not finite: a gamma so large that
+ *  the computation overflowed. Nothing non-finite leaves a solver. */
+inline void
+requireFiniteResult (const Signal3 &x, double gamma, const char *solver)
+{
+  if (x.allFinite ())
+    return;
+  char text[200];
+  std::snprintf (text, sizeof (text),
+                 "the %s solution overflowed: gamma = %g is too large for the precision of "
+                 "the computation",
+                 solver, gamma);
+  throw std::runtime_error (text);
 }
 
 } // namespace detail

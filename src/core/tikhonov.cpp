@@ -136,6 +136,7 @@ solveTikhonov (const PointGraph &graph, const Signal3 &f, double gamma,
   if (params.solver == TikhonovSolver::CHOLMOD)
   {
     Signal3 x = detail::solveTikhonovCholmod (graph, f, gamma);
+    detail::requireFiniteResult (x, gamma, "Tikhonov (CHOLMOD)");
     out.converged = true;
     out.iterations = 1;
     Signal3 lx;
@@ -144,7 +145,9 @@ solveTikhonov (const PointGraph &graph, const Signal3 &f, double gamma,
     out.residual = scale > 0.0 ? (x + 2.0 * gamma * lx - f).norm () / scale : 0.0;
     return x;
   }
-  return conjugateGradient (graph, f, gamma, params, out);
+  Signal3 x = conjugateGradient (graph, f, gamma, params, out);
+  detail::requireFiniteResult (x, gamma, "Tikhonov");
+  return x;
 }
 
 } // namespace core

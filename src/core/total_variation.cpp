@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 namespace pcl_graph_denoise {
@@ -99,6 +101,16 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
   {
     out.converged = true;
     return f;
+  }
+  // The duals are single precision and bounded by gamma.
+  if (!(gamma <= double (std::numeric_limits<float>::max ())))
+  {
+    char text[160];
+    std::snprintf (text, sizeof (text),
+                   "gamma = %g is too large for the total-variation solver, whose duals are "
+                   "single precision: must be at most %g",
+                   gamma, double (std::numeric_limits<float>::max ()));
+    throw std::invalid_argument (text);
   }
 
   // |grad|^2 = lambda_max(L) <= max_i 2 d_i (Gershgorin).
@@ -205,7 +217,11 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
           0.5 * (x - f).squaredNorm () + gamma * totalVariation (graph, x, params.norm, threads);
       const double dual = (f.array () * gty.array ()).sum () - 0.5 * gty.squaredNorm ();
       gap = primal - dual;
-      const double scale = std::max (primal, 1e-300 * f_norm2);
+      // The floor: with a gamma so small that the objective is below the rounding of x
+      // in double, the gap measures only that rounding and never meets the tolerance.
+      // Stopping there leaves x within sqrt(2 tolerance) 1e-10 |f| of the minimiser
+      // (the objective is 1-strongly convex): nothing a float output can show.
+      const double scale = std::max (primal, 1e-20 * f_norm2);
       out.residual = gap / scale;
       if (gap <= params.tolerance * scale)
       {
@@ -215,6 +231,7 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
     }
   }
   out.iterations = it;
+  detail::requireFiniteResult (x, gamma, "total-variation");
   return x;
 }
 

@@ -111,14 +111,17 @@ struct RadiusGraphParams
 };
 
 /** \brief Build the symmetrised k-NN graph of the finite points in `points`.
- *  \throws std::invalid_argument on invalid parameters, non-finite points, or more
- *  than 2^32 - 1 points. An empty point set gives an empty graph. */
+ *  \throws std::invalid_argument on invalid parameters, non-finite points, more
+ *  than 2^32 - 1 points, points spanning more than 1e18 units along an axis (the
+ *  neighbour search's single-precision squared distances would overflow), or a graph
+ *  that would need more memory than the machine has (k is capped at N - 1, so a huge
+ *  k asks for the complete graph). An empty point set gives an empty graph. */
 PointGraph
 buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params = {});
 
 /** \brief Build the epsilon-radius graph of `points` (see RadiusGraphParams).
  *  \param[out] radius_used if not null, receives the epsilon actually used.
- *  \throws std::invalid_argument as buildKnnGraph. */
+ *  \throws std::invalid_argument as buildKnnGraph (but for the memory check). */
 PointGraph
 buildRadiusGraph (const PointMatrix &points, const RadiusGraphParams &params = {},
                   double *radius_used = nullptr);

@@ -23,12 +23,26 @@ GraphDegreeOutlierRemoval<PointT>::fail (pcl::Indices &indices)
 {
   indices.clear ();
   removed_indices_->clear ();
+  failed_ = true;
+}
+
+template <typename PointT>
+void
+GraphDegreeOutlierRemoval<PointT>::applyFilter (PointCloud &output)
+{
+  pcl::FilterIndices<PointT>::applyFilter (output);
+  if (failed_)
+  {
+    output.clear ();
+    output.is_dense = true;
+  }
 }
 
 template <typename PointT>
 void
 GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
 {
+  failed_ = false;
   const std::string name = getClassName ();
   const auto invalid = [&] (const char *parameter, double value, const char *range) {
     PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] Invalid %s = %g: must be %s.\n",

@@ -23,6 +23,8 @@ namespace detail {
  *  filters; with the quadric fit, which removes part of the noise itself, the best gamma
  *  measured on meshes is about half (docs/evaluation.md). */
 constexpr double kQuadricGammaScale = 0.5;
+/** Every pass is run: the cap keeps a huge count (INT_MAX) from running for ever. */
+constexpr int kMaxGraphIterations = 1000;
 } // namespace detail
 
 template <typename PointT>
@@ -42,9 +44,9 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
     invalid = "sigma (setSigma) = " + std::to_string (sigma_) + ": must be finite and >= 0";
   else if (!automatic_gamma_ && !(std::isfinite (gamma_) && gamma_ >= 0.0))
     invalid = "gamma (setGamma) = " + std::to_string (gamma_) + ": must be finite and >= 0";
-  else if (graph_iterations_ < 1)
+  else if (graph_iterations_ < 1 || graph_iterations_ > detail::kMaxGraphIterations)
     invalid = "graph iterations (setGraphIterations) = " + std::to_string (graph_iterations_) +
-              ": must be >= 1";
+              ": must be in [1, " + std::to_string (detail::kMaxGraphIterations) + "]";
   else if (num_threads_ < 0)
     invalid = "number of threads (setNumberOfThreads) = " + std::to_string (num_threads_) +
               ": must be >= 0";
@@ -143,13 +145,23 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
   }
 
   // Move each point by its displacement: a point that did not move keeps its exact
-  // coordinates.
+  // coordinates. A finite point never comes out non-finite: a gamma so large that the
+  // points collapsed below double precision is reported instead.
   for (std::size_t r = 0; r < count; ++r)
   {
     PointT &p = output[gathered.cloud_index[r]];
-    p.x = static_cast<float> (double (p.x) + (position (r, 0) - start (r, 0)));
-    p.y = static_cast<float> (double (p.y) + (position (r, 1) - start (r, 1)));
-    p.z = static_cast<float> (double (p.z) + (position (r, 2) - start (r, 2)));
+    const float x = static_cast<float> (double (p.x) + (position (r, 0) - start (r, 0)));
+    const float y = static_cast<float> (double (p.y) + (position (r, 1) - start (r, 1)));
+    const float z = static_cast<float> (double (p.z) + (position (r, 2) - start (r, 2)));
+    if (!(std::isfinite (x) && std::isfinite (y) && std::isfinite (z)))
+    {
+      PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] The smoothed positions overflowed: "
+                 "gamma = %g is too large.\n", name.c_str (), used_gamma_);
+      return fail ();
+    }
+    p.x = x;
+    p.y = y;
+    p.z = z;
   }
 }
 
