@@ -28,6 +28,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -856,6 +857,17 @@ TEST (Cli, BadInputFailsWithOneLineAndNoOutput)
                       "property float y\nproperty float z\nend_header\n");
   write ("all_nan.pcd",
          pcd_header + "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\nnan nan nan\nnan nan nan\n");
+  // Data that PCL's header parser, which reads on after DATA, takes for header lines: it
+  // redefined the fields of a cloud already sized and PCL's reader crashed (SIGSEGV; found
+  // by fuzz/fuzz_cloud_file, fuzz/corpus/fuzz_cloud_file/crash-pcd-header-line-after-data).
+  write ("header_after_data.pcd",
+         "#at\nFIELDS x y zTYPE\nSIZE 4 4 8\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 20\nHEIGHT 1\n"
+         "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 20\nDATA ascii\n"
+         "COLUMNS0000000 00000000 00000000000000000000\nVERSION 000000000\n"
+         "COLUMNS000000000000\n00000000 000000000 00000000000000000");
+  write ("points_after_data.pcd", pcd_header + "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA binary\n"
+                                             "\n# comment\nPOINTS 900000000\n" +
+                                             std::string (24, '\0'));
   write ("in.xyz", "1 2 3\n");
   fs::create_directories (dir / "folder.pcd");
 
@@ -881,6 +893,8 @@ TEST (Cli, BadInputFailsWithOneLineAndNoOutput)
       {"empty.pcd", "out.pcd"},
       {"empty.ply", "out.pcd"},
       {"all_nan.pcd", "out.pcd"},
+      {"header_after_data.pcd", "out.pcd"},
+      {"points_after_data.pcd", "out.pcd"},
       {"in.xyz", "out.pcd"},
       {"good.pcd", "out.txt"},
       {"good.pcd", "out"},
@@ -975,4 +989,125 @@ TEST (Cli, InvalidCommandLinesExitWithTwoUnreadableInputWithOne)
   const ToolRun run = runTool (dir, {"good.pcd", "out.pcd", "-tv", "-gamma", "-1"});
   EXPECT_NE (run.err.find ("-gamma"), std::string::npos) << run.err;
   EXPECT_NE (run.err.find (">= 0"), std::string::npos) << run.err;
+}
+
+/** The bad-input matrix of docs/reliability.md through the tool: degenerate clouds,
+ *  extreme coordinates and extreme parameters either give an output of finite points
+ *  (exit 0) or a one-line error (exit 1) and no file, never a crash or a hang. */
+TEST (Cli, DegenerateCloudsAndExtremeParameters)
+{
+  const fs::path dir = testFolder ();
+  const auto cloud = [] (const std::vector<std::array<float, 3>> &points) {
+    pcl::PointCloud<pcl::PointXYZ> xyz;
+    for (const auto &p : points)
+      xyz.push_back (pcl::PointXYZ (p[0], p[1], p[2]));
+    return makeCloud (xyz, PCLPointField::FLOAT32, static_cast<std::uint32_t> (xyz.size ()), 1);
+  };
+  const auto fromSynthetic = [] (pcl::PointCloud<pcl::PointXYZ> xyz) {
+    return makeCloud (xyz, PCLPointField::FLOAT32, static_cast<std::uint32_t> (xyz.size ()), 1);
+  };
+  std::vector<std::array<float, 3>> line, grid, same (50, {4.0f, 5.0f, 6.0f});
+  for (int i = 0; i < 100; ++i)
+    line.push_back ({0.01f * i, 0.02f * i, -0.01f * i});
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j)
+      grid.push_back ({0.01f * i, 0.01f * j, 0.0f});
+  auto geo = pcl_graph_denoise::synthetic::noisyPlane (400, 0.005, 11);
+  for (auto &p : geo)
+    p.getVector3fMap () = p.getVector3fMap () * 1000.0f + Eigen::Vector3f (4.5e6f, 9.9e6f, 100.0f);
+  auto micro = pcl_graph_denoise::synthetic::noisySphere (300, 1.0, 0.01, 3);
+  for (auto &p : micro)
+    p.getVector3fMap () *= 1e-6f;
+  auto infinite = pcl_graph_denoise::synthetic::noisySphere (300, 1.0, 0.01, 4);
+  for (std::size_t i = 0; i < infinite.size (); i += 30)
+    infinite[i].data[i % 3] = (i % 60) ? std::numeric_limits<float>::infinity ()
+                                       : -std::numeric_limits<float>::infinity ();
+  auto far = pcl_graph_denoise::synthetic::noisySphere (300, 1.0, 0.01, 5);
+  far[7].x = 1e20f;
+  savePcd (dir / "one.pcd", cloud ({{1.5f, -2.0f, 3.25f}}));
+  savePcd (dir / "two.pcd", cloud ({{1.0f, 2.0f, 3.0f}, {1.0f, 2.0f, 4.0f}}));
+  savePcd (dir / "same.pcd", cloud (same));
+  savePcd (dir / "line.pcd", cloud (line));
+  savePcd (dir / "grid.pcd", cloud (grid));
+  savePcd (dir / "geo.pcd", fromSynthetic (geo));
+  savePcd (dir / "micro.pcd", fromSynthetic (micro));
+  savePcd (dir / "infinite.pcd", fromSynthetic (infinite), false);  // "inf" as text
+  savePcd (dir / "far.pcd", fromSynthetic (far));
+  savePcd (dir / "small.pcd", fromSynthetic (pcl_graph_denoise::synthetic::noisySphere (100, 1.0, 0.01, 6)));
+  const std::set<std::string> before = filesIn (dir);
+
+  /** Runs the tool; on success checks that every point of the output is finite and
+   *  returns the output, else an empty cloud. */
+  const auto succeeds = [&] (const std::vector<std::string> &args) {
+    const ToolRun run = runTool (dir, args);
+    EXPECT_EQ (run.code, 0) << describe (args, run);
+    PCLPointCloud2 output;
+    if (run.code != 0)
+      return output;
+    output = load (dir / args[1]);
+    for (std::size_t i = 0; i < size (output); ++i)
+      EXPECT_TRUE (finite (output, i)) << describe (args, run) << "\npoint " << i;
+    fs::remove (dir / args[1]);
+    return output;
+  };
+  const auto fails = [&] (const std::vector<std::string> &args, const std::string &text) {
+    const ToolRun run = runTool (dir, args);
+    const std::string what = describe (args, run);
+    EXPECT_EQ (run.code, 1) << what;
+    const auto error = run.err.find ("pcl_graph_denoise: error: ");
+    ASSERT_NE (error, std::string::npos) << what;
+    EXPECT_EQ (lines (run.err.substr (error)), 1u) << what;
+    EXPECT_NE (run.err.find (text, error), std::string::npos) << what;
+    EXPECT_EQ (filesIn (dir), before) << "files left behind by: " << what;
+  };
+
+  // Degenerate clouds through the default chain (-outliers -tv) and -tikhonov: every
+  // point kept, and one point, identical points, a line and a plane are left in place.
+  for (const std::string name : {"one", "two", "same", "line", "grid"})
+    for (const std::vector<std::string> &chain : std::vector<std::vector<std::string>>{{}, {"-tikhonov"}})
+    {
+      std::vector<std::string> args = {name + ".pcd", "out.pcd"};
+      args.insert (args.end (), chain.begin (), chain.end ());
+      const PCLPointCloud2 input = load (dir / (name + ".pcd")), output = succeeds (args);
+      ASSERT_EQ (size (output), size (input)) << name;
+      for (std::size_t i = 0; i < size (output); ++i)
+      {
+        if (name == "two")  // the two points may move towards each other, on their line
+          EXPECT_TRUE (coordinate (output, i, "x") == 1.0 && coordinate (output, i, "y") == 2.0);
+        else if (name == "grid")
+          EXPECT_EQ (coordinate (output, i, "z"), 0.0);
+        else if (name != "line")
+          for (const char *c : {"x", "y", "z"})
+            EXPECT_EQ (coordinate (output, i, c), coordinate (input, i, c)) << name;
+      }
+    }
+  // Extreme coordinates: geo-referenced (float steps of 1 m) and micrometres give finite
+  // results of the right size; +-Inf points are removed by -outliers and passed through
+  // by -tv; points spanning more than 1e18 are refused.
+  EXPECT_GT (size (succeeds ({"geo.pcd", "out.pcd"})), 390u);
+  EXPECT_EQ (size (succeeds ({"micro.pcd", "out.pcd", "-tikhonov"})), micro.size ());
+  EXPECT_GT (size (succeeds ({"infinite.pcd", "out.pcd"})), 280u);
+  {
+    const std::vector<std::string> args = {"infinite.pcd", "out.pcd", "-tv"};
+    ASSERT_EQ (runTool (dir, args).code, 0);
+    const PCLPointCloud2 output = load (dir / "out.pcd");
+    ASSERT_EQ (size (output), infinite.size ());
+    for (std::size_t i = 0; i < infinite.size (); ++i)
+      EXPECT_EQ (finite (output, i), i % 30 != 0) << i;
+    fs::remove (dir / "out.pcd");
+  }
+  fails ({"far.pcd", "out.pcd"}, "the points span 1e+20 units");
+  fails ({"far.pcd", "out.pcd", "-tikhonov"}, "the points span");
+
+  // Zero and huge parameters: a result, or a one-line error naming the problem.
+  EXPECT_EQ (size (succeeds ({"small.pcd", "out.pcd", "-outliers", "-outlier_fraction", "0"})), 100u);
+  EXPECT_EQ (size (succeeds ({"small.pcd", "out.pcd", "-outliers", "radius=1e300,sigma=1e300"})), 100u);
+  EXPECT_EQ (size (succeeds ({"small.pcd", "out.pcd", "-tv", "-k", "2147483647"})), 100u);
+  EXPECT_EQ (size (succeeds ({"small.pcd", "out.pcd", "-tv", "-max_iterations", "2147483647"})), 100u);
+  EXPECT_EQ (size (succeeds ({"small.pcd", "out.pcd", "-tv", "-sigma", "1e-300"})), 100u);
+  EXPECT_EQ (size (succeeds ({"small.pcd", "out.pcd", "-threads", "1024", "-tikhonov", "-tv"})), 100u);
+  EXPECT_EQ (size (succeeds ({"small.pcd", "out.pcd", "-tikhonov", "gamma=1e300,max_iterations=20"})), 100u);
+  fails ({"small.pcd", "out.pcd", "-tv", "-gamma", "1e300"}, "too large for the total-variation solver");
+  fails ({"small.pcd", "out.pcd", "-tv", "-graph_iterations", "2147483647"}, "graph iterations");
+  fails ({"small.pcd", "out.pcd", "-outliers", "-degree_threshold", "1e300"}, "no point is left");
 }

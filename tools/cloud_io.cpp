@@ -98,6 +98,39 @@ pointsText (std::uint64_t n)
   return std::to_string (n) + (n == 1 ? " point" : " points");
 }
 
+/** PCL's PCD header parser does not stop at the DATA line: it goes on taking lines for
+ *  header lines (keywords matched as prefixes, comments and empty lines skipped) until one
+ *  is not. Data that begins like a header line (an ASCII line "COLUMNS0.5 ...", binary
+ *  bytes "POINTS 999999999") then redefines the fields or the size of a cloud already
+ *  sized, and PCL 1.13's reader crashes (SIGSEGV; found by fuzz/fuzz_cloud_file).
+ *  Returns the first token of the first such line, or an empty string. */
+std::string
+headerLikeDataLine (const std::string &path, std::uint64_t data_offset)
+{
+  static const char *const keywords[] = {"VERSION", "FIELDS", "COLUMNS",   "SIZE",
+                                         "TYPE",    "COUNT",  "WIDTH",     "HEIGHT",
+                                         "VIEWPOINT", "POINTS", "DATA"};
+  std::ifstream in (path, std::ios::binary);
+  in.seekg (static_cast<std::streamoff> (data_offset));
+  std::string line;
+  while (std::getline (in, line))
+  {
+    if (line.empty ())
+      continue;
+    const std::vector<std::string> tokens = split (line);
+    if (tokens.empty ())
+      return {};  // PCL stops here
+    const std::string &first = tokens[0];
+    if (first[0] == '#')
+      continue;  // a comment to PCL, which reads on
+    for (const char *keyword : keywords)
+      if (first.compare (0, std::strlen (keyword), keyword) == 0)
+        return first;
+    return {};
+  }
+  return {};
+}
+
 /** Checks a PCD header and that the file holds the data it announces. */
 void
 checkPcdFile (const std::string &path, std::uint64_t file_size)
@@ -184,6 +217,10 @@ checkPcdFile (const std::string &path, std::uint64_t file_size)
     throw bad ("DATA '" + printable (data, 40) + "': expected ascii, binary or binary_compressed");
   if (points == 0)
     throw Error (path + ": the cloud is empty (0 points)");
+  const std::string header_like = headerLikeDataLine (path, offset);
+  if (!header_like.empty ())
+    throw bad ("its data begins with a line that PCL reads as a header line ('" +
+               printable (header_like, 40) + "')");
 
   const std::uint64_t available = file_size > offset ? file_size - offset : 0;
   const auto truncated = [&] (const std::string &what) {
