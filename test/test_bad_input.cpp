@@ -442,7 +442,7 @@ TEST (BadInput, KTooLargeForTheMemoryGivesAnErrorBeforeAllocating)
   {
     const Outcome o = run (kind, cloud, nullptr, [] (Smoothing &f) { f.setKSearch (INT_MAX); });
     expectError (o, "lower k");
-    EXPECT_LT (o.seconds, 2.0);
+    EXPECT_LT (o.seconds, 10.0);  // a hang check: it takes milliseconds
   }
 }
 

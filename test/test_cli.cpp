@@ -416,7 +416,7 @@ lines (const std::string &text)
 const char *const every_option =
     "-outliers -tikhonov -tv -radius -sigma -threshold_ratio -degree_threshold -outlier_fraction "
     "-keep_organized -threads -k -gamma -graph_iterations -normal_displacement -local_surface "
-    "-shrinkage_correction -tolerance -max_iterations -solver -norm -removed -ascii -q";
+    "-shrinkage_correction -tolerance -max_iterations -solver -norm -memory_limit -removed -ascii -q";
 
 }  // namespace
 
@@ -989,6 +989,35 @@ TEST (Cli, InvalidCommandLinesExitWithTwoUnreadableInputWithOne)
   const ToolRun run = runTool (dir, {"good.pcd", "out.pcd", "-tv", "-gamma", "-1"});
   EXPECT_NE (run.err.find ("-gamma"), std::string::npos) << run.err;
   EXPECT_NE (run.err.find (">= 0"), std::string::npos) << run.err;
+}
+
+/** -memory_limit reaches every step: below the estimate, the step fails up front with
+ *  one line naming the limit and no output; a generous limit changes nothing. */
+TEST (Cli, MemoryLimitRefusesACloudUpFront)
+{
+  const fs::path dir = testFolder ();
+  savePcd (dir / "good.pcd", sphereWithOutliers ());
+  const std::set<std::string> before = filesIn (dir);
+  for (const auto &args : std::vector<std::vector<std::string>>{
+           {"good.pcd", "out.pcd", "-outliers", "-memory_limit", "0.1"},
+           {"good.pcd", "out.pcd", "-tikhonov", "-memory_limit", "0.1"},
+           {"good.pcd", "out.pcd", "-tv", "-memory_limit", "0.1"}})
+  {
+    const ToolRun run = runTool (dir, args);
+    const std::string what = describe (args, run);
+    EXPECT_EQ (run.code, 1) << what;
+    const auto error = run.err.find ("pcl_graph_denoise: error: ");
+    ASSERT_NE (error, std::string::npos) << what;
+    EXPECT_EQ (lines (run.err.substr (error)), 1u) << what;
+    EXPECT_NE (run.err.find ("memory limit"), std::string::npos) << what;
+    EXPECT_EQ (filesIn (dir), before) << "files left behind by: " << what;
+  }
+  const ToolRun limited = runTool (dir, {"good.pcd", "limited.pcd", "-tv", "-memory_limit", "100000"});
+  const ToolRun free = runTool (dir, {"good.pcd", "free.pcd", "-tv"});
+  ASSERT_EQ (limited.code, 0) << limited.err;
+  ASSERT_EQ (free.code, 0) << free.err;
+  EXPECT_EQ (readFile (dir / "limited.pcd"), readFile (dir / "free.pcd"));
+  EXPECT_EQ (runTool (dir, {"good.pcd", "out.pcd", "-tv", "-memory_limit", "-1"}).code, 2);
 }
 
 /** The bad-input matrix of docs/reliability.md through the tool: degenerate clouds,

@@ -76,6 +76,7 @@ const ParameterSpec parameter_specs[] = {
     {"solver", TIKHONOV_STEP, ValueType::SOLVER},
     {"norm", TV_STEP, ValueType::NORM},
     {"threads", ALL_STEPS, ValueType::THREADS},
+    {"memory_limit", ALL_STEPS, ValueType::NON_NEGATIVE},
 };
 
 /** The three ways of choosing the outliers' threshold: one per step at most. */
@@ -535,6 +536,8 @@ usage (const std::string &program)
     << "  -keep_organized 0|1     1: removed points stay, with x, y, z set to NaN, so that\n"
     << "                          width x height survive (default: 0, they are dropped)\n"
     << "  -threads N              worker threads (default: " << outlier_threads << ")\n"
+    << "  -memory_limit MB        refuse up front a cloud whose estimated peak memory is\n"
+    << "                          above MB megabytes; 0 = this machine's memory (default: 0)\n"
     << "\n"
     << "-tikhonov and -tv options:\n"
     << "  -k N                    neighbours per point in the graph; >= 1 (default: " << k << ")\n"
@@ -564,6 +567,8 @@ usage (const std::string &program)
     << "  -norm isotropic|anisotropic\n"
     << "                          -tv only (default: " << norm << ")\n"
     << "  -threads N              worker threads (default: " << smoothing_threads << ")\n"
+    << "  -memory_limit MB        refuse up front a cloud whose estimated peak memory is\n"
+    << "                          above MB megabytes; 0 = this machine's memory (default: 0)\n"
     << "\n"
     << "Other options:\n"
     << "  -removed FILE           also write the points removed by the -outliers steps, with\n"

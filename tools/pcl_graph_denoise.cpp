@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <limits>
 #include <new>
 #include <string>
 
@@ -106,6 +107,16 @@ forward (const std::string &captured)
     std::fputs (captured.c_str (), stderr);
 }
 
+/** A -memory_limit value (megabytes) in bytes, saturated. */
+std::size_t
+megabytes (double value)
+{
+  const double bytes = value * 1e6;
+  return bytes >= double (std::numeric_limits<std::size_t>::max ())
+             ? std::numeric_limits<std::size_t>::max ()
+             : static_cast<std::size_t> (bytes);
+}
+
 void
 configure (pcl_graph_denoise::GraphDegreeOutlierRemoval<pcl::PointXYZ> &filter, const Step &step)
 {
@@ -123,6 +134,8 @@ configure (pcl_graph_denoise::GraphDegreeOutlierRemoval<pcl::PointXYZ> &filter, 
       filter.setOutlierFraction (v.number);
     else if (name == "threads")
       filter.setNumberOfThreads (static_cast<int> (v.number));
+    else if (name == "memory_limit")
+      filter.setMemoryLimit (megabytes (v.number));
   }
 }
 
@@ -157,6 +170,8 @@ configure (pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &filter, const Step 
       filter.setMaximumIterations (static_cast<int> (v.number));
     else if (name == "threads")
       filter.setNumberOfThreads (static_cast<int> (v.number));
+    else if (name == "memory_limit")
+      filter.setMemoryLimit (megabytes (v.number));
   }
 }
 

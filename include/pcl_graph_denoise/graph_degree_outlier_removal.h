@@ -142,6 +142,23 @@ public:
   inline int
   getNumberOfThreads () const { return num_threads_; }
 
+  /** \brief Memory the filter may use, in bytes (default 0: the machine's physical
+   *  memory). filter() first estimates its peak for the input (estimateMemory) and,
+   *  when that is above the limit, prints a PCL_ERROR with both figures and returns
+   *  nothing kept, nothing removed, before allocating anything. */
+  inline void
+  setMemoryLimit (std::size_t bytes) { memory_limit_ = bytes; }
+
+  /** \brief The memory limit set (0: the machine's physical memory). */
+  inline std::size_t
+  getMemoryLimit () const { return memory_limit_; }
+
+  /** \brief Estimated peak memory, in bytes, of filtering a cloud of `num_points`
+   *  points (a filtered cloud as output included, the input not): an upper bound of
+   *  what bench/bench_memory measures (docs/reliability.md). */
+  std::size_t
+  estimateMemory (std::size_t num_points) const;
+
   /** \brief Epsilon used by the last filter() call (after derivation), 0 before. */
   inline double
   getUsedRadius () const { return used_radius_; }
@@ -185,6 +202,7 @@ private:
   double automatic_ratio_ = 0.2;
   ThresholdRule rule_ = AUTOMATIC_THRESHOLD;
   int num_threads_ = 0;
+  std::size_t memory_limit_ = 0;
 
   double used_radius_ = 0.0;
   double used_sigma_ = 0.0;

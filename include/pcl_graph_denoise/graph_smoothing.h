@@ -5,6 +5,7 @@
 #pragma once
 
 #include <pcl_graph_denoise/core/graph.h>
+#include <pcl_graph_denoise/core/memory.h>
 #include <pcl_graph_denoise/core/solvers.h>
 
 #include <pcl/filters/filter.h>
@@ -169,6 +170,24 @@ public:
   inline int
   getNumberOfThreads () const { return num_threads_; }
 
+  /** \brief Memory the filter may use, in bytes (default 0: the machine's physical
+   *  memory). filter() first estimates its peak for the input (estimateMemory) and,
+   *  when that is above the limit, prints a PCL_ERROR with both figures and leaves an
+   *  empty output, before allocating anything: a cloud too large fails at once rather
+   *  than being killed half-way. */
+  inline void
+  setMemoryLimit (std::size_t bytes) { memory_limit_ = bytes; }
+
+  /** \brief The memory limit set (0: the machine's physical memory). */
+  inline std::size_t
+  getMemoryLimit () const { return memory_limit_; }
+
+  /** \brief Estimated peak memory, in bytes, of filtering a cloud of `num_points`
+   *  points with the current parameters (the output cloud included, the input not):
+   *  an upper bound of what bench/bench_memory measures (docs/reliability.md). */
+  std::size_t
+  estimateMemory (std::size_t num_points) const;
+
   /** \brief Gamma used by the last pass of the last filter() call. */
   inline double
   getUsedGamma () const { return used_gamma_; }
@@ -203,6 +222,10 @@ protected:
   smooth (const core::PointGraph &graph, const core::Signal3 &f, double gamma,
           core::SolverReport &report) const = 0;
 
+  /** \brief Which computation smooth() runs, for the memory estimate. */
+  virtual core::SmoothingKind
+  smoothingKind () const = 0;
+
   /** \brief The data-derived gamma for a graph and an estimated noise level. */
   virtual double
   automaticGamma (const core::PointGraph &graph, double noise) const = 0;
@@ -218,6 +241,7 @@ protected:
   double tolerance_;
   int max_iterations_;
   int num_threads_ = 0;
+  std::size_t memory_limit_ = 0;
 
   double used_gamma_ = 0.0;
   double used_sigma_ = 0.0;

@@ -55,6 +55,9 @@ protected:
   smooth (const core::PointGraph &graph, const core::Signal3 &f, double gamma,
           core::SolverReport &report) const override;
 
+  core::SmoothingKind
+  smoothingKind () const override;
+
   double
   automaticGamma (const core::PointGraph &graph, double noise) const override;
 

@@ -3,12 +3,11 @@
  * SPDX-License-Identifier: BSD-3-Clause
  */
 #include <pcl_graph_denoise/core/graph.h>
+#include <pcl_graph_denoise/core/memory.h>
 
 #include "neighbor_search.h"
 #include "parallel.h"
 #include "spatial_order.h"
-
-#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -57,31 +56,6 @@ validatePoints (const PointMatrix &points)
                    "the points span %g units along an axis, more than %g: their squared "
                    "distances would overflow single precision",
                    extent.maxCoeff (), kMaxExtent);
-    throw std::invalid_argument (text);
-  }
-}
-
-/** Fails before allocating a graph that cannot fit in this machine's memory (a huge k
- *  asks for the complete graph: N^2 entries). */
-void
-requireGraphMemory (std::size_t n, std::size_t k)
-{
-  // Per directed entry: the k-NN list and its transpose (4 + 4 bytes), and at most two
-  // stored entries of the symmetric graph (2 x (4 + 4) bytes).
-  const long double bytes = 24.0L * n * k;
-#ifdef _SC_PHYS_PAGES
-  const long pages = ::sysconf (_SC_PHYS_PAGES), page = ::sysconf (_SC_PAGE_SIZE);
-  const long double memory = pages > 0 && page > 0 ? (long double) pages * page : 0.0L;
-#else
-  const long double memory = 0.0L;
-#endif
-  if (memory > 0.0L && bytes > memory)
-  {
-    char text[200];
-    std::snprintf (text, sizeof (text),
-                   "the graph of %zu points with k = %zu neighbours would need about %.3g GB, "
-                   "more than the %.3g GB of memory of this machine: lower k",
-                   n, k, double (bytes / 1e9L), double (memory / 1e9L));
     throw std::invalid_argument (text);
   }
 }
@@ -293,7 +267,9 @@ buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params)
     return graph;
 
   const int k = static_cast<int> (std::min<std::size_t> (params.k, n - 1));
-  requireGraphMemory (n, static_cast<std::size_t> (k));
+  requireMemory (knnGraphMemory (n, static_cast<std::size_t> (k)), params.memory_limit,
+                 "the k-NN graph of " + std::to_string (n) + " points with k = " +
+                     std::to_string (k));
   const detail::KdTree tree (ordered);
   DirectedLists directed;
   const std::vector<double> mean = meanKnnDistances (tree, n, k, params.num_threads, &directed);

@@ -87,6 +87,9 @@ struct KnnGraphParams
   double sigma = 0.0;
   /** Worker threads; 0 = all hardware threads. The result does not depend on it. */
   int num_threads = 0;
+  /** Bytes the graph may take at its peak (core::knnGraphMemory); 0 (default) = the
+   *  machine's physical memory. A larger graph is refused before anything is allocated. */
+  std::size_t memory_limit = 0;
 };
 
 /** \brief Parameters of the epsilon-radius graph (edge when |p_i - p_j| < epsilon). */
@@ -114,8 +117,8 @@ struct RadiusGraphParams
  *  \throws std::invalid_argument on invalid parameters, non-finite points, more
  *  than 2^32 - 1 points, points spanning more than 1e18 units along an axis (the
  *  neighbour search's single-precision squared distances would overflow), or a graph
- *  that would need more memory than the machine has (k is capped at N - 1, so a huge
- *  k asks for the complete graph). An empty point set gives an empty graph. */
+ *  whose estimated peak memory (core::knnGraphMemory) exceeds params.memory_limit
+ *  (k is capped at N - 1, so a huge k asks for the complete graph). An empty point set gives an empty graph. */
 PointGraph
 buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params = {});
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <pcl_graph_denoise/core/graph.h>
+#include <pcl_graph_denoise/core/memory.h>
 #include <pcl_graph_denoise/graph_degree_outlier_removal.h>
 #include <pcl_graph_denoise/point_cloud_adaptor.h>
 
@@ -13,7 +14,9 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <numeric>
+#include <string>
 
 namespace pcl_graph_denoise {
 
@@ -36,6 +39,18 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (PointCloud &output)
     output.clear ();
     output.is_dense = true;
   }
+}
+
+template <typename PointT>
+std::size_t
+GraphDegreeOutlierRemoval<PointT>::estimateMemory (std::size_t num_points) const
+{
+  // The PCL layer: an output cloud and the per-point flags (the gathered points, their
+  // degrees and the index lists are in the core's figure, which was measured with them).
+  const long double layer = static_cast<long double> (num_points) * (sizeof (PointT) + 8);
+  const long double total = layer + core::radiusDegreesMemory (num_points);
+  const long double most = static_cast<long double> (std::numeric_limits<std::size_t>::max ());
+  return total >= most ? std::numeric_limits<std::size_t>::max () : static_cast<std::size_t> (total);
 }
 
 template <typename PointT>
@@ -67,6 +82,17 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
   {
     PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] Invalid indices: %s.\n", name.c_str (),
                bad_index.c_str ());
+    return fail (indices);
+  }
+
+  try
+  {
+    core::requireMemory (estimateMemory (input_->size ()), memory_limit_,
+                         "removing the outliers of " + std::to_string (input_->size ()) + " points");
+  }
+  catch (const std::exception &e)
+  {
+    PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] %s.\n", name.c_str (), e.what ());
     return fail (indices);
   }
 

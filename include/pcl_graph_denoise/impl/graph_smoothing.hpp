@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <string>
 
 namespace pcl_graph_denoise {
@@ -26,6 +27,20 @@ constexpr double kQuadricGammaScale = 0.5;
 /** Every pass is run: the cap keeps a huge count (INT_MAX) from running for ever. */
 constexpr int kMaxGraphIterations = 1000;
 } // namespace detail
+
+template <typename PointT>
+std::size_t
+GraphSmoothing<PointT>::estimateMemory (std::size_t num_points) const
+{
+  // The PCL layer: the output cloud, the gathered points and their indices, the start
+  // and current positions in double.
+  const long double layer = static_cast<long double> (num_points) * (sizeof (PointT) + 20 + 48);
+  const long double core = core::smoothingMemory (num_points, k_ > 0 ? std::size_t (k_) : 1,
+                                                  smoothingKind ());
+  const long double most = static_cast<long double> (std::numeric_limits<std::size_t>::max ());
+  return layer + core >= most ? std::numeric_limits<std::size_t>::max ()
+                              : static_cast<std::size_t> (layer + core);
+}
 
 template <typename PointT>
 void
@@ -69,6 +84,18 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
     return fail ();
   }
 
+  try
+  {
+    core::requireMemory (estimateMemory (input_->size ()), memory_limit_,
+                         "smoothing " + std::to_string (input_->size ()) + " points with k = " +
+                             std::to_string (k_));
+  }
+  catch (const std::exception &e)
+  {
+    PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] %s.\n", name.c_str (), e.what ());
+    return fail ();
+  }
+
   output = *input_;
   used_gamma_ = used_sigma_ = estimated_noise_ = 0.0;
   report_ = core::SolverReport{};
@@ -94,6 +121,7 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
       params.k = k_;
       params.sigma = sigma_;
       params.num_threads = num_threads_;
+      params.memory_limit = memory_limit_;
       const core::PointGraph graph =
           core::buildKnnGraph (position.template cast<float> (), params);
       core::Signal3 f (static_cast<Eigen::Index> (count), 3);

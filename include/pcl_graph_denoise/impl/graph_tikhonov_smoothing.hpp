@@ -23,6 +23,14 @@ GraphTikhonovSmoothing<PointT>::smooth (const core::PointGraph &graph, const cor
 }
 
 template <typename PointT>
+core::SmoothingKind
+GraphTikhonovSmoothing<PointT>::smoothingKind () const
+{
+  return solver_ == core::TikhonovSolver::CHOLMOD ? core::SmoothingKind::TIKHONOV_CHOLMOD
+                                                  : core::SmoothingKind::TIKHONOV;
+}
+
+template <typename PointT>
 double
 GraphTikhonovSmoothing<PointT>::automaticGamma (const core::PointGraph &graph, double noise) const
 {

@@ -23,6 +23,13 @@ GraphTVSmoothing<PointT>::smooth (const core::PointGraph &graph, const core::Sig
 }
 
 template <typename PointT>
+core::SmoothingKind
+GraphTVSmoothing<PointT>::smoothingKind () const
+{
+  return core::SmoothingKind::TOTAL_VARIATION;
+}
+
+template <typename PointT>
 double
 GraphTVSmoothing<PointT>::automaticGamma (const core::PointGraph &graph, double noise) const
 {
