@@ -991,6 +991,35 @@ TEST (Cli, InvalidCommandLinesExitWithTwoUnreadableInputWithOne)
   EXPECT_NE (run.err.find (">= 0"), std::string::npos) << run.err;
 }
 
+/** A cloud in pieces (a sphere and a far lone point): the report says so, and the lone
+ *  point comes out where it went in. */
+TEST (Cli, GraphInPiecesIsReported)
+{
+  const fs::path dir = testFolder ();
+  auto xyz = pcl_graph_denoise::synthetic::noisySphere (2000, 1.0, 0.01, 9);
+  xyz.push_back (pcl::PointXYZ (-900.0f, 40.0f, 7.0f));
+  savePcd (dir / "pieces.pcd", makeCloud (xyz, PCLPointField::FLOAT32, xyz.size (), 1));
+  for (const char *step : {"-tikhonov", "-tv"})
+  {
+    const std::vector<std::string> args = {"pieces.pcd", "out.pcd", step};
+    const ToolRun run = runTool (dir, args);
+    ASSERT_EQ (run.code, 0) << describe (args, run);
+    EXPECT_NE (run.err.find ("connected components"), std::string::npos) << run.err;
+    EXPECT_NE (run.err.find ("1 isolated points not moved"), std::string::npos) << run.err;
+    pcl::PointCloud<pcl::PointXYZ> out;
+    ASSERT_EQ (pcl::io::loadPCDFile ((dir / "out.pcd").string (), out), 0);
+    ASSERT_EQ (out.size (), xyz.size ());
+    EXPECT_EQ (out.back ().x, -900.0f);
+    EXPECT_EQ (out.back ().y, 40.0f);
+    EXPECT_EQ (out.back ().z, 7.0f);
+  }
+  xyz.resize (xyz.size () - 1);
+  savePcd (dir / "whole.pcd", makeCloud (xyz, PCLPointField::FLOAT32, xyz.size (), 1));
+  const ToolRun whole = runTool (dir, {"whole.pcd", "out.pcd", "-tv"});
+  ASSERT_EQ (whole.code, 0) << whole.err;
+  EXPECT_EQ (whole.err.find ("connected components"), std::string::npos) << whole.err;
+}
+
 /** -memory_limit reaches every step: below the estimate, the step fails up front with
  *  one line naming the limit and no output; a generous limit changes nothing. */
 TEST (Cli, MemoryLimitRefusesACloudUpFront)

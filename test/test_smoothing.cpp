@@ -512,6 +512,58 @@ TEST (SmoothingQuality, IterationCapWarnsAndKeepsTheIterate)
     ASSERT_TRUE (isFinitePosition (p));
 }
 
+/** A graph in pieces: a sphere, two far clusters smaller than k + 1 (their k-NN edges
+ *  reach the other pieces with weights that underflow to 0) and a lone far point. Every
+ *  output point is finite, the pieces are reported, the lone point does not move, the
+ *  sphere is still denoised, and a capped solve on it warns and stays finite too. */
+TEST (SmoothingQuality, GraphInPiecesIsReportedAndStaysFinite)
+{
+  auto cloud = std::make_shared<synthetic::Cloud> (synthetic::noisySphere (3000, 1.0, 0.02, 40));
+  const std::size_t sphere = cloud->size ();
+  for (int c = 0; c < 2; ++c)
+    for (int i = 0; i < 4; ++i)
+      cloud->push_back (pcl::PointXYZ (500.0f + 300.0f * c + 0.01f * i, 0.02f * (i % 2), 0.0f));
+  cloud->push_back (pcl::PointXYZ (-900.0f, 40.0f, 7.0f));
+  const pcl::PointXYZ lone = cloud->back ();
+
+  GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
+  GraphTVSmoothing<pcl::PointXYZ> tv;
+  GraphTVSmoothing<pcl::PointXYZ> capped;
+  capped.setMaximumIterations (3);
+  capped.setTolerance (1e-12);
+  for (GraphSmoothing<pcl::PointXYZ> *filter :
+       {static_cast<GraphSmoothing<pcl::PointXYZ> *> (&tikhonov),
+        static_cast<GraphSmoothing<pcl::PointXYZ> *> (&tv),
+        static_cast<GraphSmoothing<pcl::PointXYZ> *> (&capped)})
+  {
+    ::testing::internal::CaptureStderr ();
+    const auto out = run (*filter, cloud);
+    const std::string err = ::testing::internal::GetCapturedStderr ();
+    ASSERT_EQ (out->size (), cloud->size ());
+    for (const auto &p : *out)
+      ASSERT_TRUE (isFinitePosition (p));
+    const core::GraphComponents &parts = filter->getGraphComponents ();
+    EXPECT_GE (parts.count, 4u);
+    EXPECT_GE (parts.isolated, 1u);
+    EXPECT_EQ (parts.largest, sphere);
+    EXPECT_TRUE (samePoint (out->back (), lone));
+    pcl::PointCloud<pcl::PointXYZ> sphere_in, sphere_out;
+    sphere_in.insert (sphere_in.end (), cloud->begin (), cloud->begin () + sphere);
+    sphere_out.insert (sphere_out.end (), out->begin (), out->begin () + sphere);
+    if (filter == &capped)
+    {
+      EXPECT_NE (err.find ("stopped after 3 iterations"), std::string::npos) << err;
+      EXPECT_FALSE (capped.getSolverReport ().converged);
+    }
+    else
+      EXPECT_LT (meanDistance (sphere_out, kToSphere), 0.6 * meanDistance (sphere_in, kToSphere));
+  }
+  // A connected cloud is one component.
+  run (tv, std::make_shared<synthetic::Cloud> (synthetic::noisySphere (2000, 1.0, 0.02, 41)));
+  EXPECT_EQ (tv.getGraphComponents ().count, 1u);
+  EXPECT_EQ (tv.getGraphComponents ().isolated, 0u);
+}
+
 // ---- Bad input -----------------------------------------------------------------------
 
 TEST (SmoothingBadInput, EmptyAllNaNOnePointDuplicatesAndFewPoints)

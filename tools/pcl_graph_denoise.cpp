@@ -307,6 +307,17 @@ smooth (const Options &options, std::size_t s, const XyzFields &xyz, pcl::PCLPoi
     value ("%g", filter.getEstimatedNoise ());
     info ("%s)", filter.getGraphIterations () > 1 ? " in the first pass" : "");
   }
+  const auto &parts = filter.getGraphComponents ();
+  if (parts.count > 1)
+  {
+    info ("\n  graph: ");
+    value ("%zu", parts.count);
+    info (" connected components (largest ");
+    value ("%zu", parts.largest);
+    info (" points), each smoothed on its own; ");
+    value ("%zu", parts.isolated);
+    info (" isolated points not moved");
+  }
   info ("\n  solver%s: ", filter.getGraphIterations () > 1 ? " (last pass)" : "");
   value ("%d", report.iterations);
   info (" iterations, residual ");

@@ -6,6 +6,7 @@
 
 #include <pcl_graph_denoise/core/graph.h>
 #include <pcl_graph_denoise/core/memory.h>
+#include <pcl_graph_denoise/core/operators.h>
 #include <pcl_graph_denoise/core/solvers.h>
 
 #include <pcl/filters/filter.h>
@@ -202,6 +203,13 @@ public:
   inline double
   getEstimatedNoise () const { return estimated_noise_; }
 
+  /** \brief How the last pass's graph fell apart (core::connectedComponents): separate
+   *  objects or far clusters are separate components, each smoothed on its own, and a
+   *  point whose every edge weight underflowed is isolated and does not move. Also
+   *  printed with PCL_DEBUG. */
+  inline const core::GraphComponents &
+  getGraphComponents () const { return components_; }
+
   /** \brief What the solver reported in the last pass: iterations summed over its
    *  solves (two with the shrinkage correction), the largest final residual, and
    *  whether every solve converged. */
@@ -247,6 +255,7 @@ protected:
   double used_sigma_ = 0.0;
   double estimated_noise_ = 0.0;
   core::SolverReport report_;
+  core::GraphComponents components_;
 };
 
 } // namespace pcl_graph_denoise

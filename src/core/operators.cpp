@@ -8,8 +8,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <numeric>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace pcl_graph_denoise {
 namespace core {
@@ -140,6 +143,40 @@ applyGradientAdjoint (const PointGraph &graph, const Signal3 &g, Signal3 &x, int
       x.row (i) = sum;
     }
   });
+}
+
+GraphComponents
+connectedComponents (const PointGraph &graph)
+{
+  const std::size_t n = graph.numVertices ();
+  std::vector<VertexIndex> parent (n);
+  std::iota (parent.begin (), parent.end (), VertexIndex (0));
+  const auto root = [&] (VertexIndex v) {
+    while (parent[v] != v)
+      v = parent[v] = parent[parent[v]];  // path halving
+    return v;
+  };
+  std::vector<std::uint8_t> linked (n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+    {
+      if (!(graph.weight[e] > 0.0f))
+        continue;
+      linked[i] = 1;
+      const VertexIndex a = root (static_cast<VertexIndex> (i)), b = root (graph.col[e]);
+      if (a != b)
+        parent[std::max (a, b)] = std::min (a, b);
+    }
+  GraphComponents out;
+  std::vector<std::size_t> size (n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const VertexIndex r = root (static_cast<VertexIndex> (i));
+    out.count += r == i;
+    out.isolated += linked[i] == 0;
+    out.largest = std::max (out.largest, ++size[r]);
+  }
+  return out;
 }
 
 } // namespace core

@@ -41,5 +41,19 @@ void
 applyGradientAdjoint (const PointGraph &graph, const Signal3 &g, Signal3 &x,
                       int num_threads = 0);
 
+/** \brief How the graph falls apart: its connected components, counting only edges of
+ *  positive weight (an edge whose Gaussian weight underflowed to 0 links nothing). The
+ *  smoothing acts on each component on its own; an isolated vertex does not move. */
+struct GraphComponents
+{
+  std::size_t count = 0;     ///< connected components (isolated vertices included)
+  std::size_t isolated = 0;  ///< vertices without any edge of positive weight
+  std::size_t largest = 0;   ///< vertices of the largest component
+};
+
+/** \brief The connected components of `graph` (union-find over its entries). */
+GraphComponents
+connectedComponents (const PointGraph &graph);
+
 } // namespace core
 } // namespace pcl_graph_denoise

@@ -99,6 +99,7 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
   output = *input_;
   used_gamma_ = used_sigma_ = estimated_noise_ = 0.0;
   report_ = core::SolverReport{};
+  components_ = core::GraphComponents{};
   const GatheredPoints gathered = gatherFinitePoints (*input_, *indices_, name.c_str ());
   const std::size_t count = gathered.cloud_index.size ();
   if (count == 0)
@@ -129,6 +130,13 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
         f.row (v) = position.row (graph.order[v]);
       used_sigma_ = graph.sigma;
       used_gamma_ = gamma_;
+      components_ = core::connectedComponents (graph);
+      if (components_.count > 1)
+        PCL_DEBUG ("[pcl_graph_denoise::%s::applyFilter] The graph of %zu points has %zu "
+                   "connected components (largest %zu points, %zu isolated points that do "
+                   "not move); each is smoothed on its own.\n",
+                   name.c_str (), count, components_.count, components_.largest,
+                   components_.isolated);
       const bool quadric = normal_displacement_ && local_surface_ == LocalSurface::QUADRIC;
       double noise = 0.0;
       if (automatic_gamma_ || quadric)
