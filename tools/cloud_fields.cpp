@@ -191,5 +191,14 @@ appendPoints (pcl::PCLPointCloud2 &cloud, const pcl::PCLPointCloud2 &more)
   cloud.is_dense = cloud.is_dense && more.is_dense;
 }
 
+std::size_t
+countFinite (const pcl::PointCloud<pcl::PointXYZ> &cloud)
+{
+  std::size_t n = 0;
+  for (const auto &p : cloud)
+    n += std::isfinite (p.x) && std::isfinite (p.y) && std::isfinite (p.z);
+  return n;
+}
+
 }  // namespace tools
 }  // namespace pcl_graph_denoise

@@ -47,6 +47,10 @@ private:
   Field field_[3];
 };
 
+/** \brief The number of points with finite x, y and z. */
+std::size_t
+countFinite (const pcl::PointCloud<pcl::PointXYZ> &cloud);
+
 /** \brief Byte address of point `index` (row-major over width x height) in a cloud. */
 std::uint8_t *
 pointData (pcl::PCLPointCloud2 &cloud, std::size_t index);

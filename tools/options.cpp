@@ -258,36 +258,6 @@ fileArgument (const std::string &arg)
 
 }  // namespace
 
-const char *
-stepOption (StepKind kind)
-{
-  switch (kind)
-  {
-  case StepKind::OUTLIERS:
-    return "-outliers";
-  case StepKind::TIKHONOV:
-    return "-tikhonov";
-  case StepKind::TV:
-    break;
-  }
-  return "-tv";
-}
-
-const char *
-stepClass (StepKind kind)
-{
-  switch (kind)
-  {
-  case StepKind::OUTLIERS:
-    return "GraphDegreeOutlierRemoval";
-  case StepKind::TIKHONOV:
-    return "GraphTikhonovSmoothing";
-  case StepKind::TV:
-    break;
-  }
-  return "GraphTVSmoothing";
-}
-
 Options
 parseCommandLine (int argc, const char *const *argv)
 {

@@ -4,6 +4,8 @@
  */
 #pragma once
 
+#include "steps.h"
+
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -16,14 +18,6 @@ namespace tools {
 struct UsageError : std::runtime_error
 {
   using std::runtime_error::runtime_error;
-};
-
-/** \brief The filters a step can run. */
-enum class StepKind
-{
-  OUTLIERS,  ///< GraphDegreeOutlierRemoval
-  TIKHONOV,  ///< GraphTikhonovSmoothing
-  TV         ///< GraphTVSmoothing
 };
 
 /** \brief A step parameter as given on the command line, already checked: `number`
@@ -62,14 +56,6 @@ struct Options
   bool default_chain = false;  ///< no step was given: -outliers -tv
   std::vector<Step> steps;
 };
-
-/** \brief The option naming a step ("-outliers", "-tikhonov", "-tv"). */
-const char *
-stepOption (StepKind kind);
-
-/** \brief The class a step runs ("GraphDegreeOutlierRemoval", ...). */
-const char *
-stepClass (StepKind kind);
 
 /** \brief Parses the command line.
  *  \throws UsageError with a one-line message. */

@@ -68,15 +68,6 @@ value (const char *format, Args... args)
     print_value (stderr, format, args...);
 }
 
-std::size_t
-countFinite (const Cloud &cloud)
-{
-  std::size_t n = 0;
-  for (const auto &p : cloud)
-    n += std::isfinite (p.x) && std::isfinite (p.y) && std::isfinite (p.z);
-  return n;
-}
-
 /** "step 2/3 (-tv)", for messages. */
 std::string
 stepName (const Options &options, std::size_t s)
@@ -107,16 +98,6 @@ forward (const std::string &captured)
     std::fputs (captured.c_str (), stderr);
 }
 
-/** A -memory_limit value (megabytes) in bytes, saturated. */
-std::size_t
-megabytes (double value)
-{
-  const double bytes = value * 1e6;
-  return bytes >= double (std::numeric_limits<std::size_t>::max ())
-             ? std::numeric_limits<std::size_t>::max ()
-             : static_cast<std::size_t> (bytes);
-}
-
 void
 configure (pcl_graph_denoise::GraphDegreeOutlierRemoval<pcl::PointXYZ> &filter, const Step &step)
 {
@@ -135,7 +116,7 @@ configure (pcl_graph_denoise::GraphDegreeOutlierRemoval<pcl::PointXYZ> &filter, 
     else if (name == "threads")
       filter.setNumberOfThreads (static_cast<int> (v.number));
     else if (name == "memory_limit")
-      filter.setMemoryLimit (megabytes (v.number));
+      filter.setMemoryLimit (megabytesToBytes (v.number));
   }
 }
 
@@ -171,7 +152,7 @@ configure (pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &filter, const Step 
     else if (name == "threads")
       filter.setNumberOfThreads (static_cast<int> (v.number));
     else if (name == "memory_limit")
-      filter.setMemoryLimit (megabytes (v.number));
+      filter.setMemoryLimit (megabytesToBytes (v.number));
   }
 }
 
