@@ -37,7 +37,7 @@ template <typename PointT>
 class GraphDegreeOutlierRemoval : public pcl::FilterIndices<PointT>
 {
 protected:
-  using PointCloud = typename pcl::FilterIndices<PointT>::PointCloud;
+  using PointCloud = typename pcl::FilterIndices<PointT>::PointCloud;  ///< the cloud type filtered
   using pcl::FilterIndices<PointT>::extract_removed_indices_;
   using pcl::FilterIndices<PointT>::filter_name_;
   using pcl::FilterIndices<PointT>::getClassName;
@@ -47,8 +47,8 @@ protected:
   using pcl::FilterIndices<PointT>::removed_indices_;
 
 public:
-  using Ptr = std::shared_ptr<GraphDegreeOutlierRemoval<PointT>>;
-  using ConstPtr = std::shared_ptr<const GraphDegreeOutlierRemoval<PointT>>;
+  using Ptr = std::shared_ptr<GraphDegreeOutlierRemoval<PointT>>;  ///< shared pointer, as PCL's filters
+  using ConstPtr = std::shared_ptr<const GraphDegreeOutlierRemoval<PointT>>;  ///< shared pointer to const
 
   /** \brief How the degree threshold is chosen. */
   enum ThresholdRule

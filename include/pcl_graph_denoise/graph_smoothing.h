@@ -42,15 +42,15 @@ template <typename PointT>
 class GraphSmoothing : public pcl::Filter<PointT>
 {
 protected:
-  using PointCloud = typename pcl::Filter<PointT>::PointCloud;
+  using PointCloud = typename pcl::Filter<PointT>::PointCloud;  ///< the cloud type filtered
   using pcl::Filter<PointT>::filter_name_;
   using pcl::Filter<PointT>::getClassName;
   using pcl::Filter<PointT>::indices_;
   using pcl::Filter<PointT>::input_;
 
 public:
-  using Ptr = std::shared_ptr<GraphSmoothing<PointT>>;
-  using ConstPtr = std::shared_ptr<const GraphSmoothing<PointT>>;
+  using Ptr = std::shared_ptr<GraphSmoothing<PointT>>;  ///< shared pointer, as PCL's filters
+  using ConstPtr = std::shared_ptr<const GraphSmoothing<PointT>>;  ///< shared pointer to const
 
   /** \brief Number of nearest neighbours of each point in the graph (the graph links i
    *  and j when either is among the other's k nearest). Default 10. Valid: >= 1; with
@@ -222,6 +222,9 @@ protected:
   : tolerance_ (tolerance), max_iterations_ (max_iterations)
   {}
 
+  /** \brief pcl::Filter's entry point: gathers the finite points named by the indices,
+   *  runs the passes (graph, gamma, smooth(), displacement) and writes x, y, z back
+   *  into a copy of the input. */
   void
   applyFilter (PointCloud &output) override;
 
@@ -238,24 +241,24 @@ protected:
   virtual double
   automaticGamma (const core::PointGraph &graph, double noise) const = 0;
 
-  int k_ = 10;
-  double sigma_ = 0.0;
-  double gamma_ = 0.0;
-  bool automatic_gamma_ = true;
-  int graph_iterations_ = 1;
-  bool normal_displacement_ = true;
-  LocalSurface local_surface_ = LocalSurface::QUADRIC;
-  bool shrinkage_correction_ = true;
-  double tolerance_;
-  int max_iterations_;
-  int num_threads_ = 0;
-  std::size_t memory_limit_ = 0;
+  int k_ = 10;                    ///< setKSearch
+  double sigma_ = 0.0;            ///< setSigma (0 = derived)
+  double gamma_ = 0.0;            ///< setGamma
+  bool automatic_gamma_ = true;   ///< setAutomaticGamma / setGamma
+  int graph_iterations_ = 1;      ///< setGraphIterations
+  bool normal_displacement_ = true;                      ///< setNormalDisplacement
+  LocalSurface local_surface_ = LocalSurface::QUADRIC;  ///< setLocalSurface
+  bool shrinkage_correction_ = true;                     ///< setShrinkageCorrection
+  double tolerance_;              ///< setTolerance
+  int max_iterations_;            ///< setMaximumIterations
+  int num_threads_ = 0;           ///< setNumberOfThreads
+  std::size_t memory_limit_ = 0;  ///< setMemoryLimit (bytes, 0 = physical memory)
 
-  double used_gamma_ = 0.0;
-  double used_sigma_ = 0.0;
-  double estimated_noise_ = 0.0;
-  core::SolverReport report_;
-  core::GraphComponents components_;
+  double used_gamma_ = 0.0;           ///< getUsedGamma
+  double used_sigma_ = 0.0;           ///< getUsedSigma
+  double estimated_noise_ = 0.0;      ///< getEstimatedNoise
+  core::SolverReport report_;         ///< getSolverReport
+  core::GraphComponents components_;  ///< getGraphComponents
 };
 
 } // namespace pcl_graph_denoise

@@ -31,8 +31,8 @@ class GraphTikhonovSmoothing : public GraphSmoothing<PointT>
   using GraphSmoothing<PointT>::filter_name_;
 
 public:
-  using Ptr = std::shared_ptr<GraphTikhonovSmoothing<PointT>>;
-  using ConstPtr = std::shared_ptr<const GraphTikhonovSmoothing<PointT>>;
+  using Ptr = std::shared_ptr<GraphTikhonovSmoothing<PointT>>;  ///< shared pointer, as PCL's filters
+  using ConstPtr = std::shared_ptr<const GraphTikhonovSmoothing<PointT>>;  ///< shared pointer to const
 
   GraphTikhonovSmoothing ()
   : GraphSmoothing<PointT> (core::TikhonovParams{}.tolerance, core::TikhonovParams{}.max_iterations)

@@ -32,8 +32,8 @@ class GraphTVSmoothing : public GraphSmoothing<PointT>
   using GraphSmoothing<PointT>::filter_name_;
 
 public:
-  using Ptr = std::shared_ptr<GraphTVSmoothing<PointT>>;
-  using ConstPtr = std::shared_ptr<const GraphTVSmoothing<PointT>>;
+  using Ptr = std::shared_ptr<GraphTVSmoothing<PointT>>;  ///< shared pointer, as PCL's filters
+  using ConstPtr = std::shared_ptr<const GraphTVSmoothing<PointT>>;  ///< shared pointer to const
 
   GraphTVSmoothing ()
   : GraphSmoothing<PointT> (core::TotalVariationParams{}.tolerance,

@@ -123,6 +123,8 @@ PointGraph
 buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params = {});
 
 /** \brief Build the epsilon-radius graph of `points` (see RadiusGraphParams).
+ *  \param[in] points the points, one per row (all finite).
+ *  \param[in] params epsilon, theta and threads; zeros are derived from the data.
  *  \param[out] radius_used if not null, receives the epsilon actually used.
  *  \throws std::invalid_argument as buildKnnGraph (but for the memory check). */
 PointGraph

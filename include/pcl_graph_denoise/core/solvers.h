@@ -40,16 +40,18 @@ enum class TikhonovSolver
   CHOLMOD              ///< exact sparse Cholesky (SuiteSparse); for small and medium clouds
 };
 
+/** \brief Settings of solveTikhonov. */
 struct TikhonovParams
 {
+  /** Which solver; default TikhonovSolver::CONJUGATE_GRADIENT. */
   TikhonovSolver solver = TikhonovSolver::CONJUGATE_GRADIENT;
   /** CG stops when |r| <= tolerance |f - mean(f)| (Frobenius norms over the three
    *  columns; the mean, which the filter leaves unchanged, does not count). Since
    *  I + 2 gamma L >= I, the solution's error is at most the residual: 1e-5 of the
    *  cloud's extent, far below any noise worth removing. */
   double tolerance = 1e-5;
-  int max_iterations = 1000;  ///< CG iteration cap
-  int num_threads = 0;        ///< 0 = all hardware threads
+  int max_iterations = 1000;  ///< CG iteration cap; valid >= 1
+  int num_threads = 0;        ///< 0 = all hardware threads; valid >= 0
 };
 
 /** \brief Solves (I + 2 gamma L) x = f for the three columns of f.
@@ -65,15 +67,17 @@ enum class TotalVariationNorm
   ANISOTROPIC  ///< sum of the absolute differences of x, y and z
 };
 
+/** \brief Settings of solveTotalVariation. */
 struct TotalVariationParams
 {
+  /** Which norm of the edge differences; default TotalVariationNorm::ISOTROPIC. */
   TotalVariationNorm norm = TotalVariationNorm::ISOTROPIC;
   /** Stops when the primal-dual gap is at most tolerance x the primal objective (checked
    *  every 10 iterations). With the solver's warm start, 1e-3 lands within about 1% of
    *  the exact minimiser's distance to the surface on noisy spheres. */
   double tolerance = 1e-3;
-  int max_iterations = 500;
-  int num_threads = 0;  ///< 0 = all hardware threads
+  int max_iterations = 500;  ///< iteration cap; valid >= 1
+  int num_threads = 0;       ///< 0 = all hardware threads; valid >= 0
 };
 
 /** \brief Total-variation denoising by the accelerated primal-dual algorithm of
