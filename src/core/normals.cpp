@@ -10,6 +10,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
 
 #include <stdexcept>
@@ -107,11 +108,14 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
       phi.resize (ring.size ());
       height.resize (ring.size ());
       weight.assign (ring.size (), 1.0);
+      double support = 0.0;  // the patch's largest tangential distance (squared)
       for (std::size_t r = 0; r < ring.size (); ++r)
       {
         const Eigen::Vector3d d = (x.row (ring[r])).transpose () - origin;
-        phi[r] = quadricBasis (d.dot (u), d.dot (v));
+        const double a = d.dot (u), b = d.dot (v);
+        phi[r] = quadricBasis (a, b);
         height[r] = d.dot (normal);
+        support = std::max (support, a * a + b * b);
       }
       Basis q = Basis::Zero ();
       bool fitted = false;
@@ -141,9 +145,28 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
         q = solved;
         fitted = true;
       }
-      const double target =
-          fitted ? quadricBasis (from_f.dot (u), from_f.dot (v)).dot (q) : 0.0;  // else the plane
-      out.row (i) = f.row (i) + (target - f_height) * normal.transpose ();
+      // The quadric is evaluated where f_i projects, pulled back onto the patch when it
+      // lies outside: a patch much smaller than f_i's distance to x_i (the points of a
+      // piecewise-constant TV estimate, collapsed together) must not be extrapolated.
+      double fa = from_f.dot (u), fb = from_f.dot (v);
+      const double reach = fa * fa + fb * fb;
+      if (reach > support)
+      {
+        const double pull = support > 0.0 ? std::sqrt (support / reach) : 0.0;
+        fa *= pull;
+        fb *= pull;
+      }
+      const double target = fitted ? quadricBasis (fa, fb).dot (q) : 0.0;  // else the plane
+      // And with a noise level, the move along the normal stays within the smoothing's
+      // own move plus three noise levels: a fit that still goes astray cannot throw the
+      // point away.
+      double move = target - f_height;
+      if (robust)
+      {
+        const double limit = from_f.norm () + 3.0 * noise;
+        move = std::clamp (move, -limit, limit);
+      }
+      out.row (i) = f.row (i) + move * normal.transpose ();
     }
   });
   return out;
