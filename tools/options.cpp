@@ -41,6 +41,7 @@ enum class ValueType
   POSITIVE,      ///< finite real > 0
   FRACTION,      ///< real in [0, 1]
   AT_LEAST_ONE,  ///< integer >= 1
+  PASSES,        ///< integer in [1, kMaxGraphIterations]
   THREADS,       ///< integer in [0, max_threads]
   SWITCH,        ///< 0 or 1 (also true/false, on/off, yes/no)
   GAMMA,         ///< "auto" or a finite real >= 0
@@ -67,7 +68,7 @@ const ParameterSpec parameter_specs[] = {
     {"sigma", ALL_STEPS, ValueType::NON_NEGATIVE},
     {"k", SMOOTHING_STEPS, ValueType::AT_LEAST_ONE},
     {"gamma", SMOOTHING_STEPS, ValueType::GAMMA},
-    {"graph_iterations", SMOOTHING_STEPS, ValueType::AT_LEAST_ONE},
+    {"graph_iterations", SMOOTHING_STEPS, ValueType::PASSES},
     {"normal_displacement", SMOOTHING_STEPS, ValueType::SWITCH},
     {"local_surface", SMOOTHING_STEPS, ValueType::SURFACE},
     {"shrinkage_correction", SMOOTHING_STEPS, ValueType::SWITCH},
@@ -173,6 +174,7 @@ parseValue (const ParameterSpec &spec, const std::string &text)
       throw invalid ("expected isotropic or anisotropic");
     return value;
   case ValueType::AT_LEAST_ONE:
+  case ValueType::PASSES:
   case ValueType::THREADS:
   {
     const std::string digits = !text.empty () && text[0] == '+' ? text.substr (1) : text;
@@ -186,12 +188,13 @@ parseValue (const ParameterSpec &spec, const std::string &text)
         throw invalid (spec.type == ValueType::THREADS ? "must be >= 0" : "must be >= 1");
       throw invalid ("not an integer");
     }
-    const int limit =
-        spec.type == ValueType::THREADS ? max_threads : std::numeric_limits<int>::max ();
+    const int limit = spec.type == ValueType::THREADS  ? max_threads
+                      : spec.type == ValueType::PASSES ? pcl_graph_denoise::kMaxGraphIterations
+                                                       : std::numeric_limits<int>::max ();
     if (digits.size () > 10 || std::stoll (digits) > limit)
       throw invalid ("must be at most " + std::to_string (limit));
     value.number = static_cast<double> (std::stoll (digits));
-    if (spec.type == ValueType::AT_LEAST_ONE && value.number < 1.0)
+    if (spec.type != ValueType::THREADS && value.number < 1.0)
       throw invalid ("must be >= 1");
     return value;
   }
@@ -516,7 +519,8 @@ usage (const std::string &program)
     << "  -gamma X|auto           strength, >= 0, 0 = identity; -tikhonov: unitless, -tv: a\n"
     << "                          length in cloud units\n"
     << "                          (default: " << gamma << ")\n"
-    << "  -graph_iterations N     passes, each on a graph rebuilt from the previous one; >= 1\n"
+    << "  -graph_iterations N     passes, each on a graph rebuilt from the previous one; 1 to "
+       << pcl_graph_denoise::kMaxGraphIterations << "\n"
     << "                          (default: " << passes << ")\n"
     << "  -normal_displacement 0|1\n"
     << "                          move points only along the fitted normal (default: " << normal

@@ -21,6 +21,10 @@ enum class LocalSurface
   QUADRIC  ///< a quadric height field fitted robustly to the smoothed points over two rings
 };
 
+/** \brief The largest number of passes GraphSmoothing::setGraphIterations accepts: every
+ *  pass runs, so a huge count (INT_MAX) would run for ever. */
+constexpr int kMaxGraphIterations = 1000;
+
 /** \brief What the graph smoothing filters share: the k-NN graph of the points, the
  *  data-derived strength, re-graphing, and the PCL contract of a smoother.
  *
@@ -95,7 +99,8 @@ public:
   getAutomaticGamma () const { return automatic_gamma_; }
 
   /** \brief Number of passes: each pass rebuilds the graph on the previous pass's output
-   *  and denoises it again (the paper's re-graphing). Default 1. Valid: 1 to 1000. */
+   *  and denoises it again (the paper's re-graphing). Default 1. Valid: 1 to
+   *  kMaxGraphIterations (1000). */
   inline void
   setGraphIterations (int n) { graph_iterations_ = n; }
 

@@ -24,8 +24,6 @@ namespace detail {
  *  filters; with the quadric fit, which removes part of the noise itself, the best gamma
  *  measured on meshes is about half (docs/evaluation.md). */
 constexpr double kQuadricGammaScale = 0.5;
-/** Every pass is run: the cap keeps a huge count (INT_MAX) from running for ever. */
-constexpr int kMaxGraphIterations = 1000;
 } // namespace detail
 
 template <typename PointT>
@@ -59,9 +57,9 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
     invalid = "sigma (setSigma) = " + std::to_string (sigma_) + ": must be finite and >= 0";
   else if (!automatic_gamma_ && !(std::isfinite (gamma_) && gamma_ >= 0.0))
     invalid = "gamma (setGamma) = " + std::to_string (gamma_) + ": must be finite and >= 0";
-  else if (graph_iterations_ < 1 || graph_iterations_ > detail::kMaxGraphIterations)
+  else if (graph_iterations_ < 1 || graph_iterations_ > kMaxGraphIterations)
     invalid = "graph iterations (setGraphIterations) = " + std::to_string (graph_iterations_) +
-              ": must be in [1, " + std::to_string (detail::kMaxGraphIterations) + "]";
+              ": must be in [1, " + std::to_string (kMaxGraphIterations) + "]";
   else if (num_threads_ < 0)
     invalid = "number of threads (setNumberOfThreads) = " + std::to_string (num_threads_) +
               ": must be >= 0";

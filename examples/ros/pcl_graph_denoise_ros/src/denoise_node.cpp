@@ -164,10 +164,12 @@ positive (const Parameter &p)
 }
 
 int
-integer (const Parameter &p, int minimum, const std::string &expected)
+integer (const Parameter &p, int minimum, const std::string &expected,
+         int maximum = std::numeric_limits<int>::max ())
 {
   Value &v = const_cast<Value &> (p.value);
-  if (v.getType () != Value::TypeInt || static_cast<int> (v) < minimum)
+  if (v.getType () != Value::TypeInt || static_cast<int> (v) < minimum ||
+      static_cast<int> (v) > maximum)
     throw invalid (p, expected);
   return static_cast<int> (v);
 }
@@ -235,7 +237,11 @@ configureSmoother (pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &filter,
             number (p, 0.0, std::numeric_limits<double>::max (), "a number >= 0 or 'auto'"));
     }
     else if (name == "graph_iterations")
-      filter.setGraphIterations (integer (p, 1, "an integer >= 1"));
+      filter.setGraphIterations (
+          integer (p, 1,
+                   "an integer in [1, " + std::to_string (pcl_graph_denoise::kMaxGraphIterations) +
+                       "]",
+                   pcl_graph_denoise::kMaxGraphIterations));
     else if (name == "normal_displacement")
       filter.setNormalDisplacement (boolean (p));
     else if (name == "local_surface")

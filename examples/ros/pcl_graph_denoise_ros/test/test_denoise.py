@@ -345,6 +345,8 @@ class TestDenoiseNode(unittest.TestCase):
              "~outlier_fraction: expected a number in [0, 1], got 2"),
             ({"chain": [{"step": "tv", "k": 0}]}, [], "~chain[0]/k: expected an integer >= 1"),
             ({}, ["_chain:=tikhonov", "_tikhonov/k:=0"], "~tikhonov/k: expected an integer >= 1"),
+            ({"chain": [{"step": "tv", "graph_iterations": 1001}]}, [],
+             "~chain[0]/graph_iterations: expected an integer in [1, 1000], got 1001"),
             ({"chain": ["tikhonov"], "tv": {"gama": 0.01}}, [],
              "~tv/gama: not a parameter of a 'tv' step"),
             ({"treads": 1}, [], "~treads: not a parameter of this node"),
