@@ -178,6 +178,24 @@ less smoothing: the data-derived γ is halved with it (`setLocalSurface (LocalSu
 keeps the plane and the full γ). The probe runs on evaluation meshes; the halved γ was then
 checked on the calibration set kept apart (below).
 
+Feature-aware edge weights were tried and not taken: each k-NN weight multiplied by
+exp(−(((fⱼ − fᵢ)·nᵢ)² + ((fᵢ − fⱼ)·nⱼ)²) / (4h²)), h = c σ̂, with the normals nᵢ of the
+noisy points over two graph rings (a neighbour off the point's tangent plane, as across a thin
+wall or a sharp edge, counts less; the derived γ follows the lower degrees). On the quick subset
+(casting, fandisk, kitten; 10,000 points; `build/bench/evaluate pugan --quick`), P2M ×10⁴ of
+Tikhonov / TV at 1%: casting 3.01 / 2.09 by default, 2.86 / 2.02 with c = 2, 2.97 / 2.07 with
+c = 4; on fandisk and kitten c = 2 was 0–6% worse at every level and c = 4 within 2%. The
+casting's loss against its noisy input (1.22) does not come from smoothing across its thin
+walls, or not only. The noise estimate is one cause: on the casting at 10,000 points σ̂ is
+3.9×, 2.2×, 1.3× and 1.0× the true σ at 0.5, 1, 2 and 3% (fandisk, kitten, camel, genus3,
+star, cow: 0.8–1.4×; chair 2.4× at 0.5%), so the derived γ over-smooths it; at a quarter of
+that γ Tikhonov's P2M there falls from 3.13 to 2.01 (1%). Other estimators over the same two
+rings do not fix it: the residual of a quadric fit instead of a plane gives 3.7× / 2.1× on the
+casting (and 1.0–1.2× at 0.5% on the smooth meshes, against 1.2–1.4× for the plane), its
+median absolute deviation 2.9× / 2.0×, the lower quartile instead of the median 2.6× / 1.8×:
+at this sampling the casting's thin parts are narrower than two graph rings, and no local fit
+separates their detail from noise.
+
 With the refinements, TV is no longer sharper than Tikhonov at edges: on a noisy cube (30,000
 points, σ = 0.01, points within 0.1 of an edge) the paper's filters give 0.0074 (Tikhonov) and
 0.0060 (TV); the plane defaults gave 0.0045 and 0.0045, the quadric defaults 0.0036 and 0.0036
