@@ -132,6 +132,204 @@ TEST (KnnGraph, MatchesBruteForceNeighboursAndWeights)
   }
 }
 
+// ---- Spatio-temporal graph ------------------------------------------------------------
+
+namespace {
+
+/** Rows [offset, offset + frame.rows ()) of the concatenation hold `frame`. */
+PointMatrix
+concatenate (const std::vector<PointMatrix> &frames)
+{
+  Eigen::Index n = 0;
+  for (const auto &f : frames)
+    n += f.rows ();
+  PointMatrix all (n, 3);
+  Eigen::Index at = 0;
+  for (const auto &f : frames)
+  {
+    if (f.rows ())
+      all.middleRows (at, f.rows ()) = f;
+    at += f.rows ();
+  }
+  return all;
+}
+
+} // namespace
+
+TEST (SpatioTemporalGraph, MatchesBruteForceNeighboursAndWeights)
+{
+  // Frames of different sizes, one empty: each point links to its k1 nearest in its own
+  // frame and its k2 nearest in each frame within the window, symmetrised.
+  const std::vector<PointMatrix> frames = {randomPoints (60, 11), randomPoints (45, 12),
+                                           PointMatrix (0, 3), randomPoints (70, 13),
+                                           randomPoints (3, 14)};
+  SpatioTemporalGraphParams params;
+  params.k_spatial = 5;
+  params.k_temporal = 2;
+  params.window = 1;
+  const PointGraph g = buildSpatioTemporalGraph (frames, params);
+  const PointMatrix all = concatenate (frames);
+  ASSERT_EQ (g.numVertices (), std::size_t (all.rows ()));
+
+  std::vector<int> offset = {0};
+  for (const auto &f : frames)
+    offset.push_back (offset.back () + int (f.rows ()));
+  std::set<std::pair<int, int>> expected;
+  double spacing = 0.0;
+  int with_neighbours = 0;
+  for (std::size_t f = 0; f < frames.size (); ++f)
+  {
+    const int m = int (frames[f].rows ());
+    if (m == 0)
+      continue;
+    const int k1 = std::min (params.k_spatial, m - 1);
+    const auto knn = bruteKnn (frames[f], k1);
+    for (int i = 0; i < m; ++i)
+    {
+      double sum = 0.0;
+      for (int j : knn[i])
+      {
+        expected.insert ({offset[f] + i, offset[f] + j});
+        expected.insert ({offset[f] + j, offset[f] + i});
+        sum += std::sqrt (dist2 (frames[f], i, j));
+      }
+      if (k1 > 0)
+      {
+        spacing += sum / k1;
+        ++with_neighbours;
+      }
+      // Temporal: the k2 nearest in frames f - 1 and f + 1 (none in the empty one).
+      for (int h : {int (f) - 1, int (f) + 1})
+      {
+        if (h < 0 || h >= int (frames.size ()) || frames[h].rows () == 0)
+          continue;
+        std::vector<std::pair<double, int>> cand;
+        for (int j = 0; j < int (frames[h].rows ()); ++j)
+          cand.emplace_back ((frames[f].row (i).cast<double> () - frames[h].row (j).cast<double> ())
+                                 .squaredNorm (),
+                             j);
+        std::sort (cand.begin (), cand.end ());
+        for (int t = 0; t < std::min (params.k_temporal, int (cand.size ())); ++t)
+        {
+          expected.insert ({offset[f] + i, offset[h] + cand[t].second});
+          expected.insert ({offset[h] + cand[t].second, offset[f] + i});
+        }
+      }
+    }
+  }
+  spacing /= with_neighbours;
+  EXPECT_NEAR (g.spacing, spacing, 1e-6 * spacing);
+  EXPECT_NEAR (g.sigma, spacing / std::sqrt (2.0), 1e-6 * spacing);
+  const auto edges = edgesInCallerOrder (g);
+  std::set<std::pair<int, int>> got;
+  for (const auto &e : edges)
+    got.insert (e.first);
+  EXPECT_EQ (got, expected);
+  for (const auto &e : edges)
+    EXPECT_NEAR (e.second,
+                 std::exp (-dist2 (all, e.first.first, e.first.second) / (2 * g.sigma * g.sigma)),
+                 1e-6);
+  // Frames 1 and 3 are two apart (the empty frame 2 between them): never linked.
+  for (const auto &e : edges)
+  {
+    const int a = e.first.first, b = e.first.second;
+    EXPECT_FALSE (a >= offset[1] && a < offset[2] && b >= offset[3] && b < offset[4]);
+  }
+}
+
+TEST (SpatioTemporalGraph, OneFrameIsTheStaticGraph)
+{
+  const PointMatrix p = randomPoints (500, 21);
+  SpatioTemporalGraphParams params;
+  params.k_spatial = 8;
+  KnnGraphParams knn;
+  knn.k = 8;
+  expectSameGraph (buildSpatioTemporalGraph ({p}, params), buildKnnGraph (p, knn));
+}
+
+TEST (SpatioTemporalGraph, NoTemporalNeighboursIsEachFrameOnItsOwn)
+{
+  // k2 = 0 with an explicit theta: the edges and weights of each frame's static graph.
+  const std::vector<PointMatrix> frames = {randomPoints (200, 31), randomPoints (150, 32),
+                                           randomPoints (180, 33)};
+  SpatioTemporalGraphParams params;
+  params.k_temporal = 0;
+  params.sigma = 0.05;
+  const auto edges = edgesInCallerOrder (buildSpatioTemporalGraph (frames, params));
+  std::map<std::pair<int, int>, float> expected;
+  int offset = 0;
+  for (const auto &f : frames)
+  {
+    KnnGraphParams knn;
+    knn.sigma = params.sigma;
+    for (const auto &e : edgesInCallerOrder (buildKnnGraph (f, knn)))
+      expected[{e.first.first + offset, e.first.second + offset}] = e.second;
+    offset += int (f.rows ());
+  }
+  EXPECT_EQ (edges, expected);
+}
+
+TEST (SpatioTemporalGraph, WiderWindowLinksFartherFramesAndThreadsDoNotMatter)
+{
+  std::vector<PointMatrix> frames;
+  for (int t = 0; t < 5; ++t)
+    frames.push_back (randomPoints (3000, 40 + t));
+  SpatioTemporalGraphParams params;
+  params.window = 2;
+  params.num_threads = 1;
+  const PointGraph one = buildSpatioTemporalGraph (frames, params);
+  params.num_threads = 2;
+  expectSameGraph (one, buildSpatioTemporalGraph (frames, params));
+  params.num_threads = 3;
+  expectSameGraph (one, buildSpatioTemporalGraph (frames, params));
+  // Frame 0 reaches frame 2 (window 2) but not frame 3.
+  bool two_apart = false;
+  for (const auto &e : edgesInCallerOrder (one))
+  {
+    const int fa = e.first.first / 3000, fb = e.first.second / 3000;
+    EXPECT_LE (std::abs (fa - fb), 2);
+    two_apart = two_apart || std::abs (fa - fb) == 2;
+  }
+  EXPECT_TRUE (two_apart);
+}
+
+TEST (SpatioTemporalGraph, DegenerateSequencesAndInvalidParameters)
+{
+  EXPECT_EQ (buildSpatioTemporalGraph ({}).numVertices (), 0u);
+  EXPECT_EQ (buildSpatioTemporalGraph ({PointMatrix (0, 3), PointMatrix (0, 3)}).numEdges (), 0u);
+  // One point per frame: linked through time only, with theta from those links.
+  PointMatrix a (1, 3), b (1, 3);
+  a << 0, 0, 0;
+  b << 0.1f, 0, 0;
+  const PointGraph pair = buildSpatioTemporalGraph ({a, b});
+  EXPECT_EQ (pair.numEdges (), 1u);
+  EXPECT_NEAR (pair.spacing, 0.1, 1e-6);
+  EXPECT_GT (pair.weight[0], 0.0f);
+  // Identical frames (a static scene): every point also links to its copy.
+  const PointMatrix p = randomPoints (100, 51);
+  const auto edges = edgesInCallerOrder (buildSpatioTemporalGraph ({p, p}));
+  for (int i = 0; i < 100; ++i)
+  {
+    ASSERT_EQ (edges.count ({i, i + 100}), 1u);
+    EXPECT_EQ (edges.at ({i, i + 100}), 1.0f);
+  }
+  PointMatrix bad = randomPoints (10, 52);
+  bad (3, 1) = std::numeric_limits<float>::quiet_NaN ();
+  SpatioTemporalGraphParams params;
+  EXPECT_THROW (buildSpatioTemporalGraph ({p, bad}), std::invalid_argument);
+  params.k_spatial = 0;
+  EXPECT_THROW (buildSpatioTemporalGraph ({p}, params), std::invalid_argument);
+  params = {};
+  params.k_temporal = -1;
+  EXPECT_THROW (buildSpatioTemporalGraph ({p}, params), std::invalid_argument);
+  params = {};
+  params.window = -1;
+  EXPECT_THROW (buildSpatioTemporalGraph ({p}, params), std::invalid_argument);
+  params = {};
+  params.sigma = std::numeric_limits<double>::infinity ();
+  EXPECT_THROW (buildSpatioTemporalGraph ({p}, params), std::invalid_argument);
+}
+
 TEST (KnnGraph, IsSymmetricSortedAndLoopFree)
 {
   const PointGraph g = buildKnnGraph (randomPoints (1000, 2));

@@ -279,6 +279,166 @@ buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params)
   return graph;
 }
 
+PointGraph
+buildSpatioTemporalGraph (const std::vector<PointMatrix> &frames,
+                          const SpatioTemporalGraphParams &params)
+{
+  requireValid (params.k_spatial >= 1, "k_spatial (k1) must be >= 1");
+  requireValid (params.k_temporal >= 0, "k_temporal (k2) must be >= 0");
+  requireValid (params.window >= 0, "window must be >= 0");
+  validateLength (params.sigma, "sigma");
+  validateThreads (params.num_threads);
+
+  // All frames in one matrix, frame 0's rows first.
+  const std::size_t num_frames = frames.size ();
+  std::vector<std::size_t> offset (num_frames + 1, 0);
+  for (std::size_t f = 0; f < num_frames; ++f)
+    offset[f + 1] = offset[f] + static_cast<std::size_t> (frames[f].rows ());
+  const std::size_t n = offset[num_frames];
+  requireValid (n < std::numeric_limits<VertexIndex>::max (),
+                "too many points for 32-bit vertex indices");
+  PointMatrix all (static_cast<Eigen::Index> (n), 3);
+  for (std::size_t f = 0; f < num_frames; ++f)
+    if (frames[f].rows () > 0)
+      all.middleRows (static_cast<Eigen::Index> (offset[f]), frames[f].rows ()) = frames[f];
+  validatePoints (all);
+
+  PointGraph graph;
+  const PointMatrix ordered = orderVertices (all, params.num_threads, graph);
+  graph.row_ptr.assign (n + 1, 0);
+  if (n == 0)
+    return graph;
+
+  // Each frame's vertices (ascending), its own points and k-d tree; a vertex's frame
+  // and its place among the frame's vertices.
+  std::vector<std::uint32_t> frame_of (n);
+  std::vector<VertexIndex> local_of (n);
+  std::vector<std::vector<VertexIndex>> members (num_frames);
+  for (std::size_t v = 0; v < n; ++v)
+  {
+    const auto f = static_cast<std::uint32_t> (
+        std::upper_bound (offset.begin (), offset.end (), std::size_t (graph.order[v])) -
+        offset.begin () - 1);
+    frame_of[v] = f;
+    local_of[v] = static_cast<VertexIndex> (members[f].size ());
+    members[f].push_back (static_cast<VertexIndex> (v));
+  }
+  std::vector<std::unique_ptr<detail::KdTree>> trees (num_frames);
+  std::vector<PointMatrix> frame_points (num_frames);
+  std::size_t spatial_total = 0, temporal_total = 0;
+  for (std::size_t f = 0; f < num_frames; ++f)
+  {
+    const std::size_t m = members[f].size ();
+    if (m == 0)
+      continue;
+    frame_points[f].resize (static_cast<Eigen::Index> (m), 3);
+    for (std::size_t r = 0; r < m; ++r)
+      frame_points[f].row (static_cast<Eigen::Index> (r)) = ordered.row (members[f][r]);
+    trees[f].reset (new detail::KdTree (frame_points[f]));
+  }
+  const auto spatial_k = [&] (std::size_t f) {
+    return static_cast<int> (
+        std::min<std::size_t> (params.k_spatial, members[f].empty () ? 0 : members[f].size () - 1));
+  };
+  const auto temporal_k = [&] (std::size_t g) {
+    return static_cast<int> (std::min<std::size_t> (params.k_temporal, members[g].size ()));
+  };
+  // The frames linked to frame f, and each vertex's number of out-going edges.
+  const auto linked = [&] (std::size_t f) {
+    const std::size_t w = static_cast<std::size_t> (params.window);
+    std::vector<std::size_t> out;
+    for (std::size_t g = f > w ? f - w : 0; g <= std::min (num_frames - 1, f + w); ++g)
+      if (g != f && temporal_k (g) > 0)
+        out.push_back (g);
+    return out;
+  };
+  std::vector<std::vector<std::size_t>> links (num_frames);
+  for (std::size_t f = 0; f < num_frames; ++f)
+  {
+    links[f] = linked (f);
+    std::size_t temporal = 0;
+    for (const std::size_t g : links[f])
+      temporal += static_cast<std::size_t> (temporal_k (g));
+    spatial_total += members[f].size () * static_cast<std::size_t> (spatial_k (f));
+    temporal_total += members[f].size () * temporal;
+  }
+  requireMemory (knnGraphMemory (n, (spatial_total + temporal_total + n - 1) / n),
+                 params.memory_limit,
+                 "the spatio-temporal graph of " + std::to_string (n) + " points in " +
+                     std::to_string (num_frames) + " frames");
+
+  DirectedLists directed;
+  directed.ptr.assign (n + 1, 0);
+  for (std::size_t v = 0; v < n; ++v)
+  {
+    const std::size_t f = frame_of[v];
+    std::size_t row = static_cast<std::size_t> (spatial_k (f));
+    for (const std::size_t g : links[f])
+      row += static_cast<std::size_t> (temporal_k (g));
+    directed.ptr[v + 1] = directed.ptr[v] + row;
+  }
+  directed.idx.resize (directed.ptr[n]);
+  std::vector<double> mean_spatial (n, 0.0);
+  detail::parallelFor (
+      n, params.num_threads,
+      [&] (std::size_t begin, std::size_t end) {
+        std::vector<VertexIndex> found, scratch_idx;
+        std::vector<float> d2, scratch_d2;
+        for (std::size_t v = begin; v < end; ++v)
+        {
+          const std::size_t f = frame_of[v];
+          VertexIndex *out = directed.idx.data () + directed.ptr[v];
+          const int k1 = spatial_k (f);
+          if (k1 > 0)
+          {
+            found.resize (static_cast<std::size_t> (k1));
+            d2.resize (static_cast<std::size_t> (k1));
+            trees[f]->nearestOthers (local_of[v], k1, found.data (), d2.data (), scratch_idx,
+                                     scratch_d2);
+            double sum = 0.0;
+            for (int m = 0; m < k1; ++m)
+            {
+              *out++ = members[f][found[m]];
+              sum += std::sqrt (double (d2[m]));
+            }
+            mean_spatial[v] = sum / k1;
+          }
+          const float *query = ordered.row (static_cast<Eigen::Index> (v)).data ();
+          for (const std::size_t g : links[f])
+          {
+            const int k2 = temporal_k (g);
+            found.resize (static_cast<std::size_t> (k2));
+            d2.resize (static_cast<std::size_t> (k2));
+            const std::size_t got = trees[g]->nearest (query, k2, found.data (), d2.data ());
+            for (std::size_t m = 0; m < got; ++m)
+              *out++ = members[g][found[m]];
+          }
+        }
+      },
+      kBlock);
+
+  std::size_t with_neighbours = 0;
+  double sum = 0.0;
+  for (std::size_t v = 0; v < n; ++v)
+    if (spatial_k (frame_of[v]) > 0)
+    {
+      sum += mean_spatial[v];
+      ++with_neighbours;
+    }
+  if (with_neighbours == 0 && !directed.idx.empty ())
+  {
+    // Every frame holds one point: the spacing is the mean length of the temporal links.
+    for (std::size_t v = 0; v < n; ++v)
+      for (std::uint64_t e = directed.ptr[v]; e < directed.ptr[v + 1]; ++e)
+        sum += std::sqrt (squaredDistance (ordered, static_cast<VertexIndex> (v), directed.idx[e]));
+    with_neighbours = directed.idx.size ();
+  }
+  graph.spacing = with_neighbours > 0 ? sum / double (with_neighbours) : 0.0;
+  graph.sigma = params.sigma > 0.0 ? params.sigma : graph.spacing / std::sqrt (2.0);
+  symmetrise (ordered, directed, graph.sigma, params.num_threads, graph);
+  return graph;
+}
+
 namespace {
 
 /** What both uses of the epsilon-graph share: parameters checked, points in Morton

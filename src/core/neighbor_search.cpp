@@ -79,6 +79,16 @@ KdTree::nearestOthers (VertexIndex self, int k, VertexIndex *indices, float *squ
   }
 }
 
+std::size_t
+KdTree::nearest (const float *query, int k, VertexIndex *indices, float *squared_distances) const
+{
+  const std::size_t wanted =
+      std::min (static_cast<std::size_t> (k), impl_->data.kdtree_get_point_count ());
+  if (wanted == 0)
+    return 0;
+  return impl_->tree.knnSearch (query, wanted, indices, squared_distances);
+}
+
 void
 KdTree::othersWithin (VertexIndex self, float radius, std::vector<VertexIndex> &neighbors,
                       std::vector<std::pair<VertexIndex, float>> &scratch) const

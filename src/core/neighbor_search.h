@@ -35,6 +35,11 @@ public:
   nearestOthers (VertexIndex self, int k, VertexIndex *indices, float *squared_distances,
                  std::vector<VertexIndex> &scratch_idx, std::vector<float> &scratch_d2) const;
 
+  /** The min(k, number of points) nearest points of the tree to `query` (x, y, z),
+   *  nearest first: writes their indices and squared distances; returns the count. */
+  std::size_t
+  nearest (const float *query, int k, VertexIndex *indices, float *squared_distances) const;
+
   /** Every other point closer than `radius` to point `self`, appended
    *  to `neighbors` in no particular order. */
   void

@@ -122,6 +122,42 @@ struct RadiusGraphParams
 PointGraph
 buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params = {});
 
+/** \brief Parameters of the spatio-temporal k-NN graph of a sequence of frames (the
+ *  paper's graph for time-varying clouds). */
+struct SpatioTemporalGraphParams
+{
+  /** k1: nearest neighbours of each point in its own frame (excluding itself).
+   *  Valid: >= 1; a frame of fewer than k1 + 1 points links all its points. */
+  int k_spatial = 10;
+  /** k2: nearest neighbours of each point in each other frame of the window. The paper
+   *  suggests k1 > 2 k2. Valid: >= 0; 0 gives the frames' own k-NN graphs side by side. */
+  int k_temporal = 3;
+  /** Frames t - window ... t + window are linked to frame t. Valid: >= 0. */
+  int window = 1;
+  /** Kernel width theta, in the points' units; 0 (default) = the mean distance of a
+   *  point to its k1 nearest neighbours in its own frame / sqrt(2), as for the static
+   *  graph (GSPBox's convention). Valid: >= 0, finite. */
+  double sigma = 0.0;
+  /** Worker threads; 0 = all hardware threads. The result does not depend on it. */
+  int num_threads = 0;
+  /** Bytes the graph may take at its peak; 0 (default) = the machine's physical memory. */
+  std::size_t memory_limit = 0;
+};
+
+/** \brief Build the spatio-temporal graph of a sequence of frames in one coordinate
+ *  system: each point linked to its k1 nearest neighbours in its own frame and to its
+ *  k2 nearest points in each other frame within the window, symmetrised as the static
+ *  graph (an edge when either end found the other), Gaussian weights of the edge length.
+ *  The vertices are all points of all frames; graph.order[v] numbers them in the
+ *  concatenation of the frames (frame 0's rows first). Points do not correspond across
+ *  frames; frames may differ in size or be empty. With one frame, or k2 = 0 and an
+ *  explicit theta, the result is the static k-NN graph of each frame.
+ *  \throws std::invalid_argument on invalid parameters, non-finite points, or more than
+ *  2^32 - 1 points in all, or a graph above the memory limit (as buildKnnGraph). */
+PointGraph
+buildSpatioTemporalGraph (const std::vector<PointMatrix> &frames,
+                          const SpatioTemporalGraphParams &params = {});
+
 /** \brief Build the epsilon-radius graph of `points` (see RadiusGraphParams).
  *  \param[in] points the points, one per row (all finite).
  *  \param[in] params epsilon, theta and threads; zeros are derived from the data.
