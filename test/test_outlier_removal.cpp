@@ -301,6 +301,28 @@ TEST (OutlierRemoval, OutlierFractionRemovesThatManyLowestDegreePoints)
   EXPECT_TRUE (kept.empty ());
 }
 
+TEST (OutlierRemoval, OutlierFractionRemovesTheMostIsolatedAmongEqualDegrees)
+{
+  // A dense grid and six far points, each alone (degree 0 in the radius graph): a
+  // fraction that removes three must take the three farthest from everything, whatever
+  // their place in the cloud (here the nearest three come first).
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  for (const float distance : {5.f, 10.f, 15.f, 20.f, 40.f, 80.f})
+    cloud->push_back (pcl::PointXYZ (distance, distance, distance));
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j)
+      cloud->push_back (pcl::PointXYZ (0.01f * i, 0.01f * j, 0.0f));
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter (true);
+  filter.setInputCloud (cloud);
+  filter.setOutlierFraction (3.0 / double (cloud->size ()));
+  pcl::Indices kept;
+  filter.filter (kept);
+  pcl::Indices removed = *filter.getRemovedIndices ();
+  std::sort (removed.begin (), removed.end ());
+  EXPECT_EQ (removed, (pcl::Indices{3, 4, 5}));
+  EXPECT_EQ (filter.getUsedDegreeThreshold (), 0.0);
+}
+
 TEST (OutlierRemoval, UnitInvariantDefaults)
 {
   auto metres = sphereWithOutliers<pcl::PointXYZ> ();

@@ -101,7 +101,9 @@ public:
   getDegreeThreshold () const { return degree_threshold_; }
 
   /** \brief Removes instead the fraction p of the finite points with the lowest
-   *  degree (round(p x count) points; ties broken by index). Selects
+   *  degree (round(p x count) points; among equal degrees, such as the 0 of every
+   *  isolated point, the more isolated go first: larger mean distance to their 10
+   *  nearest neighbours, then by index). Selects
    *  OUTLIER_FRACTION. Valid: 0 <= p <= 1. */
   inline void
   setOutlierFraction (double p)

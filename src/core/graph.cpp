@@ -449,6 +449,7 @@ struct RadiusSearch
   PointMatrix ordered;
   double radius = 0.0;
   std::unique_ptr<detail::KdTree> tree;
+  std::vector<double> mean_knn;  // per vertex (graph order), before the median was taken
 };
 
 RadiusSearch
@@ -473,7 +474,8 @@ prepareRadiusSearch (const PointMatrix &points, const RadiusGraphParams &params)
     return search;
   search.tree.reset (new detail::KdTree (search.ordered));
   const int k = static_cast<int> (std::min<std::size_t> (params.spacing_k, n - 1));
-  std::vector<double> mean = meanKnnDistances (*search.tree, n, k, params.num_threads, nullptr);
+  search.mean_knn = meanKnnDistances (*search.tree, n, k, params.num_threads, nullptr);
+  std::vector<double> mean = search.mean_knn;
   std::nth_element (mean.begin (), mean.begin () + n / 2, mean.end ());
   search.graph.spacing = mean[n / 2];
   search.graph.sigma =
@@ -539,8 +541,12 @@ radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params)
   out.spacing = search.graph.spacing;
   const std::size_t n = search.graph.numVertices ();
   out.degree.assign (n, 0.0);
+  out.mean_knn_distance.assign (n, 0.0f);
   if (n < 2)
     return out;
+  for (std::size_t v = 0; v < n; ++v)
+    out.mean_knn_distance[search.graph.order[v]] = static_cast<float> (search.mean_knn[v]);
+  std::vector<double> ().swap (search.mean_knn);
   detail::parallelFor (
       n, params.num_threads,
       [&] (std::size_t begin, std::size_t end) {

@@ -174,6 +174,9 @@ struct RadiusDegrees
   double radius = 0.0;         ///< epsilon used
   double sigma = 0.0;          ///< theta used
   double spacing = 0.0;        ///< median mean k-NN distance (the derived scale)
+  /** Each point's mean distance to its spacing_k nearest neighbours, in the caller's row
+   *  order: how isolated it is, also where its degree is 0. */
+  std::vector<float> mean_knn_distance;
 };
 
 /** \brief The weighted degree of every point in the epsilon-radius graph of `points`

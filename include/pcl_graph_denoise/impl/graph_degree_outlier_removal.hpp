@@ -105,6 +105,7 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
                "filter (%zu points, %zu indices).\n",
                name.c_str (), input_->size (), indices_->size ());
   std::vector<double> degree;
+  std::vector<float> isolation;  // mean distance to the nearest neighbours, for ties
   try
   {
     core::RadiusGraphParams params;
@@ -117,6 +118,7 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
     used_radius_ = result.radius;
     used_sigma_ = result.sigma;
     degree = std::move (result.degree);
+    isolation = std::move (result.mean_knn_distance);
   }
   catch (const std::exception &e)
   {
@@ -131,8 +133,11 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
     const auto removed = static_cast<std::size_t> (std::llround (outlier_fraction_ * double (count)));
     std::vector<std::size_t> by_degree (count);
     std::iota (by_degree.begin (), by_degree.end (), std::size_t (0));
-    std::stable_sort (by_degree.begin (), by_degree.end (),
-                      [&] (std::size_t a, std::size_t b) { return degree[a] < degree[b]; });
+    // Lowest degree first; among equal degrees (e.g. the many 0s of isolated points) the
+    // more isolated first (larger mean distance to the nearest neighbours), then by row.
+    std::stable_sort (by_degree.begin (), by_degree.end (), [&] (std::size_t a, std::size_t b) {
+      return degree[a] < degree[b] || (degree[a] == degree[b] && isolation[a] > isolation[b]);
+    });
     for (std::size_t r = 0; r < removed; ++r)
       inlier[by_degree[r]] = 0;
     used_threshold_ = removed < count ? degree[by_degree[removed]]
