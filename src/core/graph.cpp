@@ -325,7 +325,6 @@ buildSpatioTemporalGraph (const std::vector<PointMatrix> &frames,
   }
   std::vector<std::unique_ptr<detail::KdTree>> trees (num_frames);
   std::vector<PointMatrix> frame_points (num_frames);
-  std::size_t spatial_total = 0, temporal_total = 0;
   for (std::size_t f = 0; f < num_frames; ++f)
   {
     const std::size_t m = members[f].size ();
@@ -343,40 +342,30 @@ buildSpatioTemporalGraph (const std::vector<PointMatrix> &frames,
   const auto temporal_k = [&] (std::size_t g) {
     return static_cast<int> (std::min<std::size_t> (params.k_temporal, members[g].size ()));
   };
-  // The frames linked to frame f, and each vertex's number of out-going edges.
-  const auto linked = [&] (std::size_t f) {
-    const std::size_t w = static_cast<std::size_t> (params.window);
-    std::vector<std::size_t> out;
-    for (std::size_t g = f > w ? f - w : 0; g <= std::min (num_frames - 1, f + w); ++g)
-      if (g != f && temporal_k (g) > 0)
-        out.push_back (g);
-    return out;
-  };
+  // The frames linked to frame f, and the out-going edges of each of its vertices.
   std::vector<std::vector<std::size_t>> links (num_frames);
+  std::vector<std::size_t> row_length (num_frames, 0);
+  std::size_t total = 0;
+  const std::size_t w = static_cast<std::size_t> (params.window);
   for (std::size_t f = 0; f < num_frames; ++f)
   {
-    links[f] = linked (f);
-    std::size_t temporal = 0;
-    for (const std::size_t g : links[f])
-      temporal += static_cast<std::size_t> (temporal_k (g));
-    spatial_total += members[f].size () * static_cast<std::size_t> (spatial_k (f));
-    temporal_total += members[f].size () * temporal;
+    row_length[f] = static_cast<std::size_t> (spatial_k (f));
+    for (std::size_t g = f > w ? f - w : 0; g <= std::min (num_frames - 1, f + w); ++g)
+      if (g != f && temporal_k (g) > 0)
+      {
+        links[f].push_back (g);
+        row_length[f] += static_cast<std::size_t> (temporal_k (g));
+      }
+    total += members[f].size () * row_length[f];
   }
-  requireMemory (knnGraphMemory (n, (spatial_total + temporal_total + n - 1) / n),
-                 params.memory_limit,
+  requireMemory (knnGraphMemory (n, (total + n - 1) / n), params.memory_limit,
                  "the spatio-temporal graph of " + std::to_string (n) + " points in " +
                      std::to_string (num_frames) + " frames");
 
   DirectedLists directed;
   directed.ptr.assign (n + 1, 0);
   for (std::size_t v = 0; v < n; ++v)
-  {
-    const std::size_t f = frame_of[v];
-    std::size_t row = static_cast<std::size_t> (spatial_k (f));
-    for (const std::size_t g : links[f])
-      row += static_cast<std::size_t> (temporal_k (g));
-    directed.ptr[v + 1] = directed.ptr[v] + row;
-  }
+    directed.ptr[v + 1] = directed.ptr[v] + row_length[frame_of[v]];
   directed.idx.resize (directed.ptr[n]);
   std::vector<double> mean_spatial (n, 0.0);
   detail::parallelFor (
@@ -492,6 +481,7 @@ buildRadiusGraph (const PointMatrix &points, const RadiusGraphParams &params,
                   double *radius_used)
 {
   RadiusSearch search = prepareRadiusSearch (points, params);
+  std::vector<double> ().swap (search.mean_knn);  // only the degrees need it
   if (radius_used)
     *radius_used = search.radius;
   const std::size_t n = search.graph.numVertices ();
