@@ -11,6 +11,9 @@
 
 #include <pcl/filters/filter.h>
 
+#include <functional>
+#include <string>
+
 namespace pcl_graph_denoise {
 
 /** \brief The local surface a smoothing filter moves each point onto, along its normal
@@ -43,8 +46,14 @@ constexpr int kMaxGraphIterations = 1000;
  * paper's filter exactly.
  */
 template <typename PointT>
+class GraphSequenceSmoothing;
+
+template <typename PointT>
 class GraphSmoothing : public pcl::Filter<PointT>
 {
+  /** The sequence smoother runs this filter's passes on its spatio-temporal graph. */
+  friend class GraphSequenceSmoothing<PointT>;
+
 protected:
   using PointCloud = typename pcl::Filter<PointT>::PointCloud;  ///< the cloud type filtered
   using pcl::Filter<PointT>::filter_name_;
@@ -232,6 +241,27 @@ protected:
    *  into a copy of the input. */
   void
   applyFilter (PointCloud &output) override;
+
+  /** \brief Estimated peak memory of smoothing `num_points` points on a graph of about
+   *  `neighbours` neighbours per point (estimateMemory with k). */
+  std::size_t
+  estimateMemoryFor (std::size_t num_points, std::size_t neighbours) const;
+
+  /** \brief Why the parameters are invalid (naming the setter), or empty when valid. */
+  std::string
+  invalidParameters () const;
+
+  /** \brief Builds a pass's graph on the current positions (one row per point). */
+  using GraphBuilder = std::function<core::PointGraph (const core::PointMatrix &)>;
+
+  /** \brief Runs the passes on `start` (one row per point, relative coordinates): each
+   *  builds its graph with `build_graph` on the current positions, derives gamma, calls
+   *  smooth() and applies the refinements; returns the final positions in the same
+   *  rows. Sets the used_ and last-call members. The graph may be any PointGraph over
+   *  the rows (GraphSequenceSmoothing gives the spatio-temporal one).
+   *  \throws std::exception from the core (invalid sizes, memory). */
+  core::Signal3
+  runPasses (const core::Signal3 &start, const GraphBuilder &build_graph);
 
   /** \brief Denoise the signal f (graph vertex order) with strength gamma. */
   virtual core::Signal3

@@ -106,4 +106,29 @@ gatherFinitePoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &in
   return out;
 }
 
+/** \brief Moves each point `cloud[cloud_index[r]]` by its displacement `position.row (r)
+ *  - start.row (r)` (computed in double, so a point that did not move keeps its exact
+ *  coordinates); only x, y and z change. Returns false, leaving the cloud partly
+ *  written, when a moved coordinate is not finite (the positions overflowed). */
+template <typename PointT>
+bool
+writeDisplacements (const pcl::Indices &cloud_index, const core::Signal3 &start,
+                    const core::Signal3 &position, pcl::PointCloud<PointT> &cloud)
+{
+  for (std::size_t r = 0; r < cloud_index.size (); ++r)
+  {
+    PointT &p = cloud[cloud_index[r]];
+    const auto row = static_cast<Eigen::Index> (r);
+    const float x = static_cast<float> (double (p.x) + (position (row, 0) - start (row, 0)));
+    const float y = static_cast<float> (double (p.y) + (position (row, 1) - start (row, 1)));
+    const float z = static_cast<float> (double (p.z) + (position (row, 2) - start (row, 2)));
+    if (!(std::isfinite (x) && std::isfinite (y) && std::isfinite (z)))
+      return false;
+    p.x = x;
+    p.y = y;
+    p.z = z;
+  }
+  return true;
+}
+
 } // namespace pcl_graph_denoise

@@ -30,14 +30,44 @@ template <typename PointT>
 std::size_t
 GraphSmoothing<PointT>::estimateMemory (std::size_t num_points) const
 {
+  return estimateMemoryFor (num_points, k_ > 0 ? std::size_t (k_) : 1);
+}
+
+template <typename PointT>
+std::size_t
+GraphSmoothing<PointT>::estimateMemoryFor (std::size_t num_points, std::size_t neighbours) const
+{
   // The PCL layer: the output cloud, the gathered points and their indices, the start
   // and current positions in double.
   const long double layer = static_cast<long double> (num_points) * (sizeof (PointT) + 20 + 48);
-  const long double core = core::smoothingMemory (num_points, k_ > 0 ? std::size_t (k_) : 1,
-                                                  smoothingKind ());
+  const long double core = core::smoothingMemory (num_points, neighbours, smoothingKind ());
   const long double most = static_cast<long double> (std::numeric_limits<std::size_t>::max ());
   return layer + core >= most ? std::numeric_limits<std::size_t>::max ()
                               : static_cast<std::size_t> (layer + core);
+}
+
+template <typename PointT>
+std::string
+GraphSmoothing<PointT>::invalidParameters () const
+{
+  if (k_ < 1)
+    return "k (setKSearch) = " + std::to_string (k_) + ": must be >= 1";
+  if (!(std::isfinite (sigma_) && sigma_ >= 0.0))
+    return "sigma (setSigma) = " + std::to_string (sigma_) + ": must be finite and >= 0";
+  if (!automatic_gamma_ && !(std::isfinite (gamma_) && gamma_ >= 0.0))
+    return "gamma (setGamma) = " + std::to_string (gamma_) + ": must be finite and >= 0";
+  if (graph_iterations_ < 1 || graph_iterations_ > kMaxGraphIterations)
+    return "graph iterations (setGraphIterations) = " + std::to_string (graph_iterations_) +
+           ": must be in [1, " + std::to_string (kMaxGraphIterations) + "]";
+  if (num_threads_ < 0)
+    return "number of threads (setNumberOfThreads) = " + std::to_string (num_threads_) +
+           ": must be >= 0";
+  if (!(std::isfinite (tolerance_) && tolerance_ > 0.0))
+    return "tolerance (setTolerance) = " + std::to_string (tolerance_) + ": must be finite and > 0";
+  if (max_iterations_ < 1)
+    return "maximum iterations (setMaximumIterations) = " + std::to_string (max_iterations_) +
+           ": must be >= 1";
+  return {};
 }
 
 template <typename PointT>
@@ -50,25 +80,7 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
     output.width = output.height = 0;
     output.is_dense = true;
   };
-  std::string invalid;
-  if (k_ < 1)
-    invalid = "k (setKSearch) = " + std::to_string (k_) + ": must be >= 1";
-  else if (!(std::isfinite (sigma_) && sigma_ >= 0.0))
-    invalid = "sigma (setSigma) = " + std::to_string (sigma_) + ": must be finite and >= 0";
-  else if (!automatic_gamma_ && !(std::isfinite (gamma_) && gamma_ >= 0.0))
-    invalid = "gamma (setGamma) = " + std::to_string (gamma_) + ": must be finite and >= 0";
-  else if (graph_iterations_ < 1 || graph_iterations_ > kMaxGraphIterations)
-    invalid = "graph iterations (setGraphIterations) = " + std::to_string (graph_iterations_) +
-              ": must be in [1, " + std::to_string (kMaxGraphIterations) + "]";
-  else if (num_threads_ < 0)
-    invalid = "number of threads (setNumberOfThreads) = " + std::to_string (num_threads_) +
-              ": must be >= 0";
-  else if (!(std::isfinite (tolerance_) && tolerance_ > 0.0))
-    invalid = "tolerance (setTolerance) = " + std::to_string (tolerance_) +
-              ": must be finite and > 0";
-  else if (max_iterations_ < 1)
-    invalid = "maximum iterations (setMaximumIterations) = " + std::to_string (max_iterations_) +
-              ": must be >= 1";
+  std::string invalid = invalidParameters ();
   if (invalid.empty ())
   {
     const std::string bad_index = checkIndices (*input_, *indices_);
@@ -99,8 +111,7 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
   report_ = core::SolverReport{};
   components_ = core::GraphComponents{};
   const GatheredPoints gathered = gatherFinitePoints (*input_, *indices_, name.c_str ());
-  const std::size_t count = gathered.cloud_index.size ();
-  if (count == 0)
+  if (gathered.cloud_index.empty ())
   {
     PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] The input has no finite point to "
                "smooth (%zu points, %zu indices); it is returned unchanged.\n",
@@ -111,92 +122,90 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
     return;  // the identity
 
   const core::Signal3 start = gathered.xyz.template cast<double> ();
-  core::Signal3 position = start;
+  core::Signal3 position;
   try
   {
-    for (int pass = 0; pass < graph_iterations_; ++pass)
-    {
-      core::KnnGraphParams params;
-      params.k = k_;
-      params.sigma = sigma_;
-      params.num_threads = num_threads_;
-      params.memory_limit = memory_limit_;
-      const core::PointGraph graph =
-          core::buildKnnGraph (position.template cast<float> (), params);
-      core::Signal3 f (static_cast<Eigen::Index> (count), 3);
-      for (std::size_t v = 0; v < count; ++v)
-        f.row (v) = position.row (graph.order[v]);
-      used_sigma_ = graph.sigma;
-      used_gamma_ = gamma_;
-      components_ = core::connectedComponents (graph);
-      if (components_.count > 1)
-        PCL_DEBUG ("[pcl_graph_denoise::%s::applyFilter] The graph of %zu points has %zu "
-                   "connected components (largest %zu points, %zu isolated points that do "
-                   "not move); each is smoothed on its own.\n",
-                   name.c_str (), count, components_.count, components_.largest,
-                   components_.isolated);
-      const bool quadric = normal_displacement_ && local_surface_ == LocalSurface::QUADRIC;
-      double noise = 0.0;
-      if (automatic_gamma_ || quadric)
-      {
-        // Re-estimated on each pass: the noise left after the previous one.
-        noise = core::estimateNoiseLevel (graph, f, num_threads_);
-        if (pass == 0)
-          estimated_noise_ = noise;
-      }
-      if (automatic_gamma_)
-        used_gamma_ = automaticGamma (graph, noise) * (quadric ? detail::kQuadricGammaScale : 1.0);
-      // Each solve warns on its own when it stops before its tolerance; the report
-      // sums the iterations of the pass and keeps the worst residual.
-      report_ = core::SolverReport{};
-      report_.converged = true;
-      const auto solve = [&] (const core::Signal3 &signal) {
-        core::SolverReport report;
-        core::Signal3 x = smooth (graph, signal, used_gamma_, report);
-        if (!report.converged)
-          PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] The solver stopped after %d iterations "
-                    "at a residual of %g, above its tolerance; its last iterate is used.\n",
-                    name.c_str (), report.iterations, report.residual);
-        report_.iterations += report.iterations;
-        report_.residual = std::max (report_.residual, report.residual);
-        report_.converged = report_.converged && report.converged;
-        return x;
-      };
-      const core::Signal3 smoothed = solve (f);
-      core::Signal3 x = shrinkage_correction_ ? core::Signal3 (2.0 * smoothed - solve (smoothed)) : smoothed;
-      if (quadric)
-        x = core::quadricDisplacement (graph, f, x, noise, num_threads_);
-      else if (normal_displacement_)
-        x = core::normalDisplacement (f, x, core::estimateNormals (graph, smoothed, num_threads_));
-      for (std::size_t v = 0; v < count; ++v)
-        position.row (graph.order[v]) = x.row (v);
-    }
+    core::KnnGraphParams params;
+    params.k = k_;
+    params.sigma = sigma_;
+    params.num_threads = num_threads_;
+    params.memory_limit = memory_limit_;
+    position = runPasses (start, [&] (const core::PointMatrix &points) {
+      return core::buildKnnGraph (points, params);
+    });
   }
   catch (const std::exception &e)
   {
     PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] %s.\n", name.c_str (), e.what ());
     return fail ();
   }
-
-  // Move each point by its displacement: a point that did not move keeps its exact
-  // coordinates. A finite point never comes out non-finite: a gamma so large that the
-  // points collapsed below double precision is reported instead.
-  for (std::size_t r = 0; r < count; ++r)
+  if (!writeDisplacements (gathered.cloud_index, start, position, output))
   {
-    PointT &p = output[gathered.cloud_index[r]];
-    const float x = static_cast<float> (double (p.x) + (position (r, 0) - start (r, 0)));
-    const float y = static_cast<float> (double (p.y) + (position (r, 1) - start (r, 1)));
-    const float z = static_cast<float> (double (p.z) + (position (r, 2) - start (r, 2)));
-    if (!(std::isfinite (x) && std::isfinite (y) && std::isfinite (z)))
-    {
-      PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] The smoothed positions overflowed: "
-                 "gamma = %g is too large.\n", name.c_str (), used_gamma_);
-      return fail ();
-    }
-    p.x = x;
-    p.y = y;
-    p.z = z;
+    PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] The smoothed positions overflowed: "
+               "gamma = %g is too large.\n", name.c_str (), used_gamma_);
+    return fail ();
   }
+}
+
+template <typename PointT>
+core::Signal3
+GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilder &build_graph)
+{
+  const std::string name = getClassName ();
+  const std::size_t count = static_cast<std::size_t> (start.rows ());
+  core::Signal3 position = start;
+  for (int pass = 0; pass < graph_iterations_; ++pass)
+  {
+    const core::PointGraph graph = build_graph (position.template cast<float> ());
+    core::Signal3 f (static_cast<Eigen::Index> (count), 3);
+    for (std::size_t v = 0; v < count; ++v)
+      f.row (v) = position.row (graph.order[v]);
+    used_sigma_ = graph.sigma;
+    used_gamma_ = gamma_;
+    components_ = core::connectedComponents (graph);
+    if (components_.count > 1)
+      PCL_DEBUG ("[pcl_graph_denoise::%s::applyFilter] The graph of %zu points has %zu "
+                 "connected components (largest %zu points, %zu isolated points that do "
+                 "not move); each is smoothed on its own.\n",
+                 name.c_str (), count, components_.count, components_.largest,
+                 components_.isolated);
+    const bool quadric = normal_displacement_ && local_surface_ == LocalSurface::QUADRIC;
+    double noise = 0.0;
+    if (automatic_gamma_ || quadric)
+    {
+      // Re-estimated on each pass: the noise left after the previous one.
+      noise = core::estimateNoiseLevel (graph, f, num_threads_);
+      if (pass == 0)
+        estimated_noise_ = noise;
+    }
+    if (automatic_gamma_)
+      used_gamma_ = automaticGamma (graph, noise) * (quadric ? detail::kQuadricGammaScale : 1.0);
+    // Each solve warns on its own when it stops before its tolerance; the report
+    // sums the iterations of the pass and keeps the worst residual.
+    report_ = core::SolverReport{};
+    report_.converged = true;
+    const auto solve = [&] (const core::Signal3 &signal) {
+      core::SolverReport report;
+      core::Signal3 x = smooth (graph, signal, used_gamma_, report);
+      if (!report.converged)
+        PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] The solver stopped after %d iterations "
+                  "at a residual of %g, above its tolerance; its last iterate is used.\n",
+                  name.c_str (), report.iterations, report.residual);
+      report_.iterations += report.iterations;
+      report_.residual = std::max (report_.residual, report.residual);
+      report_.converged = report_.converged && report.converged;
+      return x;
+    };
+    const core::Signal3 smoothed = solve (f);
+    core::Signal3 x = shrinkage_correction_ ? core::Signal3 (2.0 * smoothed - solve (smoothed)) : smoothed;
+    if (quadric)
+      x = core::quadricDisplacement (graph, f, x, noise, num_threads_);
+    else if (normal_displacement_)
+      x = core::normalDisplacement (f, x, core::estimateNormals (graph, smoothed, num_threads_));
+    for (std::size_t v = 0; v < count; ++v)
+      position.row (graph.order[v]) = x.row (v);
+  }
+  return position;
 }
 
 } // namespace pcl_graph_denoise

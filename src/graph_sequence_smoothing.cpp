@@ -1,0 +1,14 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ */
+#include <pcl_graph_denoise/graph_sequence_smoothing.h>
+
+#ifndef PCL_NO_PRECOMPILE
+#include <pcl_graph_denoise/impl/graph_sequence_smoothing.hpp>
+
+#include <pcl/impl/instantiate.hpp>
+#include <pcl/point_types.h>
+
+PCL_INSTANTIATE (GraphSequenceSmoothing, PCL_XYZ_POINT_TYPES)
+#endif

@@ -1,0 +1,324 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ *
+ * GraphSequenceSmoothing: the spatio-temporal denoising of a sequence, batch and
+ * streaming, its reductions to the static filter, and bad input.
+ */
+#include <pcl_graph_denoise/graph_sequence_smoothing.h>
+#include <pcl_graph_denoise/graph_tikhonov_smoothing.h>
+#include <pcl_graph_denoise/graph_tv_smoothing.h>
+
+#include "synthetic.h"
+#include "test_clouds.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+using namespace pcl_graph_denoise;
+using pcl_graph_denoise::testing::sameCloud;
+using pcl_graph_denoise::testing::withFields;
+using Cloud = pcl::PointCloud<pcl::PointXYZ>;
+using Frames = std::vector<Cloud::ConstPtr>;
+using Outputs = std::vector<Cloud::Ptr>;
+
+namespace {
+
+/** A static unit sphere seen in `count` frames of independent noise, sizes varying. */
+Frames
+sphereSequence (std::size_t count, std::size_t n, double noise, std::uint64_t seed)
+{
+  Frames frames;
+  for (std::size_t t = 0; t < count; ++t)
+    frames.emplace_back (new Cloud (synthetic::noisySphere (n + 37 * t, 1.0, noise, seed + t)));
+  return frames;
+}
+
+Cloud
+staticFilter (const Cloud::ConstPtr &frame, GraphSmoothing<pcl::PointXYZ> &smoother)
+{
+  smoother.setInputCloud (frame);
+  Cloud out;
+  smoother.filter (out);
+  return out;
+}
+
+double
+meanSphereError (const Outputs &frames)
+{
+  double sum = 0.0;
+  for (const auto &frame : frames)
+    sum += synthetic::meanDistance (*frame, synthetic::distanceToUnitSphere);
+  return sum / double (frames.size ());
+}
+
+} // namespace
+
+TEST (SequenceSmoothing, OneFrameIsTheStaticFilterBitForBit)
+{
+  const Frames frames = sphereSequence (1, 1500, 0.02, 11);
+  for (bool tv : {false, true})
+  {
+    GraphSmoothing<pcl::PointXYZ>::Ptr smoother;
+    if (tv)
+      smoother.reset (new GraphTVSmoothing<pcl::PointXYZ>);
+    else
+      smoother.reset (new GraphTikhonovSmoothing<pcl::PointXYZ>);
+    GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+    sequence.setSmoother (smoother);
+    Outputs out;
+    ASSERT_TRUE (sequence.filter (frames, out));
+    ASSERT_EQ (out.size (), 1u);
+    GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
+    GraphTVSmoothing<pcl::PointXYZ> total_variation;
+    const Cloud expected = tv ? staticFilter (frames[0], total_variation) : staticFilter (frames[0], tikhonov);
+    EXPECT_TRUE (sameCloud (*out[0], expected)) << (tv ? "TV" : "Tikhonov");
+    EXPECT_FALSE (sameCloud (*out[0], *frames[0]));
+  }
+}
+
+TEST (SequenceSmoothing, NoTemporalLinkIsTheStaticFilterFrameByFrame)
+{
+  const Frames frames = sphereSequence (4, 1200, 0.02, 21);
+  GraphTikhonovSmoothing<pcl::PointXYZ> reference;
+  for (int variant = 0; variant < 2; ++variant)
+  {
+    GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+    if (variant == 0)
+      sequence.setKTemporal (0);
+    else
+      sequence.setTemporalWindow (0);
+    Outputs out;
+    ASSERT_TRUE (sequence.filter (frames, out));
+    ASSERT_EQ (out.size (), frames.size ());
+    for (std::size_t t = 0; t < frames.size (); ++t)
+      EXPECT_TRUE (sameCloud (*out[t], staticFilter (frames[t], reference))) << "frame " << t;
+  }
+}
+
+TEST (SequenceSmoothing, NeighbouringFramesLowerTheErrorOfAStaticScene)
+{
+  // Four frames of one sphere with independent noise: each frame's points gain the
+  // samples of its neighbours, at the same derived gamma rule.
+  const Frames frames = sphereSequence (4, 2000, 0.02, 31);
+  GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+  Outputs temporal, per_frame;
+  ASSERT_TRUE (sequence.filter (frames, temporal));
+  sequence.setKTemporal (0);
+  ASSERT_TRUE (sequence.filter (frames, per_frame));
+  Outputs noisy;
+  for (const auto &frame : frames)
+    noisy.emplace_back (new Cloud (*frame));
+  const double before = meanSphereError (noisy);
+  const double alone = meanSphereError (per_frame);
+  const double together = meanSphereError (temporal);
+  EXPECT_LT (alone, 0.8 * before);
+  EXPECT_LT (together, 0.9 * alone) << "noisy " << before << ", per frame " << alone;
+}
+
+TEST (SequenceSmoothing, StreamingGivesTheBatchResultWithBoundedMemory)
+{
+  Frames frames = sphereSequence (6, 900, 0.02, 41);
+  // An empty frame and a frame with non-finite points in the middle.
+  frames[2] = Cloud::ConstPtr (new Cloud);
+  {
+    Cloud::Ptr holes (new Cloud (*frames[3]));
+    for (std::size_t i = 0; i < holes->size (); i += 7)
+      (*holes)[i].y = std::numeric_limits<float>::quiet_NaN ();
+    holes->is_dense = false;
+    frames[3] = holes;
+  }
+  for (int window : {1, 2})
+  {
+    GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+    sequence.setTemporalWindow (window);
+    Outputs batch;
+    ASSERT_TRUE (sequence.filter (frames, batch));
+    ASSERT_EQ (batch.size (), frames.size ());
+    Outputs streamed;
+    for (std::size_t t = 0; t < frames.size (); ++t)
+    {
+      Cloud::Ptr ready;
+      ASSERT_TRUE (sequence.push (frames[t], ready));
+      if (t < std::size_t (window))
+        EXPECT_FALSE (ready) << "frame " << t << " came out before its window was complete";
+      else
+        ASSERT_TRUE (ready) << "frame " << t - window << " did not come out at frame " << t;
+      if (ready)
+        streamed.push_back (ready);
+      EXPECT_LE (sequence.getNumberOfHeldFrames (), std::size_t (2 * window + 1));
+      EXPECT_EQ (sequence.getNumberOfPendingFrames (), std::min<std::size_t> (t + 1, window));
+    }
+    Outputs rest;
+    ASSERT_TRUE (sequence.flush (rest));
+    EXPECT_EQ (rest.size (), std::size_t (window));
+    EXPECT_EQ (sequence.getNumberOfHeldFrames (), 0u);
+    streamed.insert (streamed.end (), rest.begin (), rest.end ());
+    ASSERT_EQ (streamed.size (), batch.size ());
+    for (std::size_t t = 0; t < batch.size (); ++t)
+      EXPECT_TRUE (sameCloud (*streamed[t], *batch[t])) << "window " << window << ", frame " << t;
+    EXPECT_EQ (batch[2]->size (), 0u);
+    // Non-finite points pass through; the others moved.
+    for (std::size_t i = 0; i < frames[3]->size (); ++i)
+      if (i % 7 == 0)
+        EXPECT_TRUE (std::isnan ((*batch[3])[i].y));
+  }
+}
+
+TEST (SequenceSmoothing, AFrameDependsOnlyOnTheFramesOfItsWindow)
+{
+  Frames frames = sphereSequence (5, 800, 0.02, 51);
+  GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+  Outputs first, second;
+  ASSERT_TRUE (sequence.filter (frames, first));
+  frames[4] = Cloud::ConstPtr (new Cloud (synthetic::noisySphere (800, 1.0, 0.05, 99)));
+  ASSERT_TRUE (sequence.filter (frames, second));
+  for (std::size_t t = 0; t < 3; ++t)
+    EXPECT_TRUE (sameCloud (*first[t], *second[t])) << "frame " << t;
+  EXPECT_FALSE (sameCloud (*first[3], *second[3]));
+}
+
+TEST (SequenceSmoothing, TheNumberOfThreadsDoesNotChangeTheResult)
+{
+  const Frames frames = sphereSequence (3, 1500, 0.02, 61);
+  Outputs one, two;
+  GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+  sequence.getSmoother ()->setNumberOfThreads (1);
+  ASSERT_TRUE (sequence.filter (frames, one));
+  sequence.getSmoother ()->setNumberOfThreads (2);
+  ASSERT_TRUE (sequence.filter (frames, two));
+  for (std::size_t t = 0; t < frames.size (); ++t)
+    EXPECT_TRUE (sameCloud (*one[t], *two[t])) << "frame " << t;
+}
+
+TEST (SequenceSmoothing, OnlyXyzChangeAndEveryFieldOrganisationAndHeaderSurvive)
+{
+  using PointT = pcl::PointXYZRGBNormal;
+  std::vector<pcl::PointCloud<PointT>::Ptr> frames;
+  for (std::size_t t = 0; t < 3; ++t)
+  {
+    auto frame = withFields<PointT> (synthetic::noisySphere (1200, 1.0, 0.02, 70 + t));
+    frame->width = 40;
+    frame->height = 30;
+    (*frame)[5].z = std::numeric_limits<float>::infinity ();
+    frame->is_dense = false;
+    frames.push_back (frame);
+  }
+  std::vector<pcl::PointCloud<PointT>> before;
+  for (const auto &frame : frames)
+    before.push_back (*frame);
+  GraphSequenceSmoothing<PointT> sequence;
+  sequence.setSmoother (GraphSmoothing<PointT>::Ptr (new GraphTVSmoothing<PointT>));
+  std::vector<pcl::PointCloud<PointT>::Ptr> out;
+  ASSERT_TRUE (sequence.filter (frames, out));
+  ASSERT_EQ (out.size (), 3u);
+  for (std::size_t t = 0; t < 3; ++t)
+  {
+    EXPECT_TRUE (sameCloud (*frames[t], before[t])) << "the input frame was modified";
+    const auto &o = *out[t];
+    ASSERT_EQ (o.size (), before[t].size ());
+    EXPECT_EQ (o.width, 40u);
+    EXPECT_EQ (o.height, 30u);
+    EXPECT_FALSE (o.is_dense);
+    EXPECT_EQ (o.header.frame_id, before[t].header.frame_id);
+    EXPECT_EQ (o.header.stamp, before[t].header.stamp);
+    std::size_t moved = 0;
+    for (std::size_t i = 0; i < o.size (); ++i)
+    {
+      PointT a = o[i], b = before[t][i];
+      moved += (a.x != b.x || a.y != b.y || a.z != b.z);
+      a.x = b.x, a.y = b.y, a.z = b.z;
+      EXPECT_TRUE (pcl_graph_denoise::testing::samePoint (a, b)) << "a field other than x, y, z changed";
+    }
+    EXPECT_TRUE (std::isinf (o[5].z));
+    EXPECT_GT (moved, o.size () / 2);
+  }
+}
+
+TEST (SequenceSmoothing, InvalidParametersAndNullFramesAreRefusedWithoutOutput)
+{
+  const Frames frames = sphereSequence (3, 500, 0.02, 81);
+  Outputs out;
+  out.emplace_back (new Cloud);
+  GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+
+  sequence.setKTemporal (-1);
+  EXPECT_FALSE (sequence.filter (frames, out));
+  EXPECT_TRUE (out.empty ());
+  sequence.setKTemporal (3);
+  sequence.setTemporalWindow (-2);
+  EXPECT_FALSE (sequence.filter (frames, out));
+  sequence.setTemporalWindow (1);
+  sequence.getSmoother ()->setKSearch (0);
+  EXPECT_FALSE (sequence.filter (frames, out));
+  sequence.getSmoother ()->setKSearch (10);
+  sequence.getSmoother ()->setGamma (std::numeric_limits<double>::quiet_NaN ());
+  EXPECT_FALSE (sequence.filter (frames, out));
+  sequence.getSmoother ()->setAutomaticGamma ();
+  sequence.setSmoother (nullptr);
+  EXPECT_FALSE (sequence.filter (frames, out));
+  sequence.setSmoother (GraphSmoothing<pcl::PointXYZ>::Ptr (new GraphTikhonovSmoothing<pcl::PointXYZ>));
+
+  Frames with_null = frames;
+  with_null[1] = nullptr;
+  EXPECT_FALSE (sequence.filter (with_null, out));
+  EXPECT_TRUE (out.empty ());
+
+  // Streaming refuses a null frame without adding it; the stream goes on.
+  Cloud::Ptr ready;
+  ASSERT_TRUE (sequence.push (frames[0], ready));
+  EXPECT_FALSE (sequence.push (nullptr, ready));
+  EXPECT_FALSE (ready);
+  EXPECT_EQ (sequence.getNumberOfPendingFrames (), 1u);
+  ASSERT_TRUE (sequence.push (frames[1], ready));
+  ASSERT_TRUE (ready);
+  sequence.reset ();
+  EXPECT_EQ (sequence.getNumberOfPendingFrames (), 0u);
+  EXPECT_EQ (sequence.getNumberOfHeldFrames (), 0u);
+
+  // A memory limit too small for a window fails the frame with an error, no crash.
+  sequence.getSmoother ()->setMemoryLimit (1000);
+  EXPECT_FALSE (sequence.filter (frames, out));
+  EXPECT_TRUE (out.empty ());
+}
+
+TEST (SequenceSmoothing, DegenerateSequencesAreDefined)
+{
+  GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+  Outputs out;
+  EXPECT_TRUE (sequence.filter (Frames{}, out));
+  EXPECT_TRUE (out.empty ());
+
+  // Only empty and all-NaN frames: returned unchanged.
+  Cloud::Ptr nan_frame (new Cloud);
+  nan_frame->resize (20);
+  for (auto &p : *nan_frame)
+    p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN ();
+  nan_frame->is_dense = false;
+  const Frames degenerate = {Cloud::ConstPtr (new Cloud), nan_frame, Cloud::ConstPtr (new Cloud)};
+  ASSERT_TRUE (sequence.filter (degenerate, out));
+  ASSERT_EQ (out.size (), 3u);
+  EXPECT_TRUE (out[0]->empty ());
+  EXPECT_TRUE (sameCloud (*out[1], *nan_frame));
+
+  // Tiny frames (fewer points than k) and duplicate points beside a normal frame.
+  Cloud::Ptr tiny (new Cloud);
+  tiny->push_back (pcl::PointXYZ (0.f, 0.f, 1.f));
+  tiny->push_back (pcl::PointXYZ (0.f, 0.f, 1.f));
+  tiny->push_back (pcl::PointXYZ (0.01f, 0.f, 1.f));
+  const Frames mixed = {tiny, sphereSequence (1, 600, 0.02, 91)[0], tiny};
+  ASSERT_TRUE (sequence.filter (mixed, out));
+  ASSERT_EQ (out.size (), 3u);
+  for (std::size_t t = 0; t < 3; ++t)
+    for (const auto &p : *out[t])
+      EXPECT_TRUE (std::isfinite (p.x) && std::isfinite (p.y) && std::isfinite (p.z));
+
+  // gamma = 0 is the identity.
+  sequence.getSmoother ()->setGamma (0.0);
+  const Frames frames = sphereSequence (2, 500, 0.02, 95);
+  ASSERT_TRUE (sequence.filter (frames, out));
+  EXPECT_TRUE (sameCloud (*out[0], *frames[0]));
+  EXPECT_TRUE (sameCloud (*out[1], *frames[1]));
+}
