@@ -9,6 +9,7 @@
  * non-zero exit code and no output file.
  */
 #include <pcl_graph_denoise/graph_degree_outlier_removal.h>
+#include <pcl_graph_denoise/graph_sequence_smoothing.h>
 #include <pcl_graph_denoise/graph_tikhonov_smoothing.h>
 #include <pcl_graph_denoise/graph_tv_smoothing.h>
 
@@ -416,7 +417,8 @@ lines (const std::string &text)
 const char *const every_option =
     "-outliers -tikhonov -tv -radius -sigma -threshold_ratio -degree_threshold -outlier_fraction "
     "-keep_organized -threads -k -gamma -graph_iterations -normal_displacement -local_surface "
-    "-shrinkage_correction -tolerance -max_iterations -solver -norm -memory_limit -removed -ascii -q";
+    "-shrinkage_correction -tolerance -max_iterations -solver -norm -memory_limit -removed -ascii -q "
+    "-temporal -smoother -k2 -window";
 
 }  // namespace
 
@@ -991,6 +993,128 @@ TEST (Cli, InvalidCommandLinesExitWithTwoUnreadableInputWithOne)
   const ToolRun run = runTool (dir, {"good.pcd", "out.pcd", "-tv", "-gamma", "-1"});
   EXPECT_NE (run.err.find ("-gamma"), std::string::npos) << run.err;
   EXPECT_NE (run.err.find (">= 0"), std::string::npos) << run.err;
+}
+
+// --- Sequences (-temporal) ----------------------------------------------------------------
+
+/** Three frames of one noisy sphere (sizes differ), with every field. */
+std::vector<PCLPointCloud2>
+sphereFrames ()
+{
+  std::vector<PCLPointCloud2> frames;
+  for (std::uint64_t t = 0; t < 3; ++t)
+  {
+    const auto xyz = pcl_graph_denoise::synthetic::noisySphere (1500 + 40 * t, 1.0, 0.02, 20 + t);
+    frames.push_back (makeCloud (xyz, PCLPointField::FLOAT32, static_cast<std::uint32_t> (xyz.size ()), 1));
+  }
+  return frames;
+}
+
+TEST (Cli, TemporalStepWritesEveryFrameToTheFolderAsTheLibraryDoes)
+{
+  const fs::path dir = testFolder ();
+  const auto frames = sphereFrames ();
+  std::vector<std::string> names = {"f0.pcd", "f1.pcd", "f2.pcd"};
+  for (std::size_t t = 0; t < 3; ++t)
+    savePcd (dir / names[t], frames[t]);
+  fs::create_directories (dir / "out");
+  fs::create_directories (dir / "alone");
+  for (const std::string &smoother : {"tikhonov", "tv"})
+  {
+    std::vector<std::string> args = names;
+    args.insert (args.end (), {"out", "-temporal", "-smoother", smoother});
+    const ToolRun run = runTool (dir, args);
+    ASSERT_EQ (run.code, 0) << describe (args, run);
+    EXPECT_NE (run.err.find ("frame 3/3"), std::string::npos) << run.err;
+    // The library on the same frames.
+    pcl_graph_denoise::GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+    if (smoother == "tv")
+      sequence.setSmoother (std::make_shared<pcl_graph_denoise::GraphTVSmoothing<pcl::PointXYZ>> ());
+    std::vector<pcl::PointCloud<pcl::PointXYZ>::Ptr> xyz, expected;
+    for (const auto &frame : frames)
+    {
+      xyz.emplace_back (new pcl::PointCloud<pcl::PointXYZ>);
+      pcl::fromPCLPointCloud2 (frame, *xyz.back ());
+    }
+    ASSERT_TRUE (sequence.filter (xyz, expected));
+    for (std::size_t t = 0; t < 3; ++t)
+    {
+      const PCLPointCloud2 output = load (dir / "out" / names[t]);
+      const auto origin = expectFieldsKept (frames[t], output);
+      ASSERT_EQ (origin.size (), size (frames[t]));
+      std::size_t moved = 0;
+      for (std::size_t i = 0; i < origin.size (); ++i)
+      {
+        EXPECT_EQ (coordinate (output, i, "x"), (*expected[t])[i].x) << "frame " << t << ", point " << i;
+        EXPECT_EQ (coordinate (output, i, "z"), (*expected[t])[i].z) << "frame " << t << ", point " << i;
+        moved += coordinate (output, i, "x") != coordinate (frames[t], i, "x");
+      }
+      EXPECT_GT (moved, origin.size () / 2);
+    }
+  }
+  // k2 = 0: each frame is the static filter's result (-tikhonov on the file alone).
+  std::vector<std::string> args = names;
+  args.insert (args.end (), {"alone", "-temporal", "k2=0"});
+  ASSERT_EQ (runTool (dir, args).code, 0);
+  for (std::size_t t = 0; t < 3; ++t)
+  {
+    const std::vector<std::string> single = {names[t], "single.pcd", "-tikhonov"};
+    ASSERT_EQ (runTool (dir, single).code, 0);
+    EXPECT_EQ (readFile (dir / "single.pcd"), readFile (dir / "alone" / names[t])) << "frame " << t;
+  }
+}
+
+TEST (Cli, TemporalCommandLinesAreChecked)
+{
+  const fs::path dir = testFolder ();
+  const auto frames = sphereFrames ();
+  savePcd (dir / "f0.pcd", frames[0]);
+  savePcd (dir / "f1.pcd", frames[1]);
+  fs::create_directories (dir / "out");
+  fs::create_directories (dir / "sub");
+  savePcd (dir / "sub" / "f0.pcd", frames[2]);
+  const std::vector<std::pair<std::vector<std::string>, std::string>> bad = {
+      {{"f0.pcd", "f1.pcd", "out", "-tv"}, "-temporal"},
+      {{"f0.pcd", "f1.pcd", "-temporal"}, "output folder"},
+      {{"f0.pcd", "f1.pcd", "missing", "-temporal"}, "does not exist"},
+      {{"f0.pcd", "sub/f0.pcd", "out", "-temporal"}, "two inputs"},
+      {{"f0.pcd", "f1.pcd", ".", "-temporal"}, "overwrite"},
+      {{"f0.pcd", "f1.pcd", "out", "-outliers", "-temporal", "-removed", "gone.pcd"}, "-removed"},
+      {{"f0.pcd", "f1.pcd", "out", "-temporal", "-k2", "-1"}, ">= 0"},
+      {{"f0.pcd", "f1.pcd", "out", "-temporal", "-window", "1.5"}, "integer"},
+      {{"f0.pcd", "f1.pcd", "out", "-temporal", "-smoother", "median"}, "tikhonov or tv"},
+      {{"f0.pcd", "f1.pcd", "out", "-temporal", "-norm", "anisotropic"}, "does not apply"},
+      {{"f0.pcd", "f1.pcd", "out", "-temporal", "smoother=tv,solver=cholmod"}, "does not apply"},
+      {{"f0.pcd", "out.pcd", "-tv", "-k2", "3"}, "only to -temporal"},
+  };
+  for (const auto &[args, message] : bad)
+  {
+    const ToolRun run = runTool (dir, args);
+    EXPECT_EQ (run.code, 2) << describe (args, run);
+    EXPECT_NE (run.err.find (message), std::string::npos) << describe (args, run);
+    EXPECT_EQ (lines (run.err), 1u) << describe (args, run);
+    EXPECT_TRUE (filesIn (dir / "out").empty ()) << describe (args, run);
+  }
+  // Given before the steps, -solver goes to the Tikhonov steps and not to a TV -temporal.
+  const std::vector<std::string> args = {"f0.pcd", "f1.pcd", "out", "-solver", "cg", "-temporal", "smoother=tv"};
+  const ToolRun run = runTool (dir, args);
+  EXPECT_EQ (run.code, 0) << describe (args, run);
+  EXPECT_EQ (filesIn (dir / "out"), (std::set<std::string>{"f0.pcd", "f1.pcd"}));
+  // A frame that fails (all points non-finite) names its file; nothing is written.
+  fs::remove_all (dir / "out");
+  fs::create_directories (dir / "out");
+  PCLPointCloud2 nan_frame = frames[1];
+  for (std::size_t i = 0; i < size (nan_frame); ++i)
+    for (const char *c : {"x", "y", "z"})
+    {
+      const float nan = std::numeric_limits<float>::quiet_NaN ();
+      std::memcpy (&nan_frame.data[i * nan_frame.point_step + field (nan_frame, c)->offset], &nan, 4);
+    }
+  savePcd (dir / "f1.pcd", nan_frame);
+  const ToolRun failed = runTool (dir, {"f0.pcd", "f1.pcd", "out", "-temporal"});
+  EXPECT_EQ (failed.code, 1) << failed.err;
+  EXPECT_NE (failed.err.find ("f1.pcd"), std::string::npos) << failed.err;
+  EXPECT_TRUE (filesIn (dir / "out").empty ());
 }
 
 /** A cloud in pieces (a sphere and a far lone point): the report says so, and the lone

@@ -8,6 +8,7 @@
 #include "stderr_capture.h"
 
 #include <pcl_graph_denoise/graph_degree_outlier_removal.h>
+#include <pcl_graph_denoise/graph_sequence_smoothing.h>
 #include <pcl_graph_denoise/graph_tikhonov_smoothing.h>
 #include <pcl_graph_denoise/graph_tv_smoothing.h>
 
@@ -31,7 +32,8 @@ enum StepMask : unsigned
   OUTLIERS_STEP = 1,
   TIKHONOV_STEP = 2,
   TV_STEP = 4,
-  SMOOTHING_STEPS = TIKHONOV_STEP | TV_STEP,
+  TEMPORAL_STEP = 8,
+  SMOOTHING_STEPS = TIKHONOV_STEP | TV_STEP | TEMPORAL_STEP,
   ALL_STEPS = OUTLIERS_STEP | SMOOTHING_STEPS
 };
 
@@ -43,10 +45,12 @@ enum class ValueType
   AT_LEAST_ONE,  ///< integer >= 1
   PASSES,        ///< integer in [1, kMaxGraphIterations]
   THREADS,       ///< integer in [0, max_threads]
+  COUNT,         ///< integer >= 0
   SWITCH,        ///< 0 or 1 (also true/false, on/off, yes/no)
   GAMMA,         ///< "auto" or a finite real >= 0
   SURFACE,       ///< plane or quadric
   SOLVER,        ///< cg or cholmod
+  SMOOTHER,      ///< tikhonov or tv
   NORM           ///< isotropic or anisotropic
 };
 
@@ -74,14 +78,20 @@ const ParameterSpec parameter_specs[] = {
     {"shrinkage_correction", SMOOTHING_STEPS, ValueType::SWITCH},
     {"tolerance", SMOOTHING_STEPS, ValueType::POSITIVE},
     {"max_iterations", SMOOTHING_STEPS, ValueType::AT_LEAST_ONE},
-    {"solver", TIKHONOV_STEP, ValueType::SOLVER},
-    {"norm", TV_STEP, ValueType::NORM},
+    {"solver", TIKHONOV_STEP | TEMPORAL_STEP, ValueType::SOLVER},
+    {"norm", TV_STEP | TEMPORAL_STEP, ValueType::NORM},
+    {"smoother", TEMPORAL_STEP, ValueType::SMOOTHER},
+    {"k2", TEMPORAL_STEP, ValueType::COUNT},
+    {"window", TEMPORAL_STEP, ValueType::COUNT},
     {"threads", ALL_STEPS, ValueType::THREADS},
     {"memory_limit", ALL_STEPS, ValueType::NON_NEGATIVE},
 };
 
 /** The three ways of choosing the outliers' threshold: one per step at most. */
 const char *const threshold_rules[] = {"threshold_ratio", "degree_threshold", "outlier_fraction"};
+
+const StepKind kAllSteps[] = {StepKind::OUTLIERS, StepKind::TIKHONOV, StepKind::TV,
+                              StepKind::TEMPORAL};
 
 unsigned
 maskOf (StepKind kind)
@@ -92,6 +102,8 @@ maskOf (StepKind kind)
     return OUTLIERS_STEP;
   case StepKind::TIKHONOV:
     return TIKHONOV_STEP;
+  case StepKind::TEMPORAL:
+    return TEMPORAL_STEP;
   case StepKind::TV:
     break;
   }
@@ -110,7 +122,7 @@ findParameter (const std::string &name)
 bool
 findStep (const std::string &name, StepKind &kind)
 {
-  for (const StepKind k : {StepKind::OUTLIERS, StepKind::TIKHONOV, StepKind::TV})
+  for (const StepKind k : kAllSteps)
     if (name == stepOption (k))
     {
       kind = k;
@@ -123,7 +135,7 @@ std::string
 stepsHaving (unsigned mask)
 {
   std::string names;
-  for (const StepKind k : {StepKind::OUTLIERS, StepKind::TIKHONOV, StepKind::TV})
+  for (const StepKind k : kAllSteps)
     if (mask & maskOf (k))
       names += std::string (names.empty () ? "" : ", ") + stepOption (k);
   return names;
@@ -173,9 +185,14 @@ parseValue (const ParameterSpec &spec, const std::string &text)
     if (text != "isotropic" && text != "anisotropic")
       throw invalid ("expected isotropic or anisotropic");
     return value;
+  case ValueType::SMOOTHER:
+    if (text != "tikhonov" && text != "tv")
+      throw invalid ("expected tikhonov or tv");
+    return value;
   case ValueType::AT_LEAST_ONE:
   case ValueType::PASSES:
   case ValueType::THREADS:
+  case ValueType::COUNT:
   {
     const std::string digits = !text.empty () && text[0] == '+' ? text.substr (1) : text;
     if (digits.empty () || !std::all_of (digits.begin (), digits.end (),
@@ -185,7 +202,9 @@ parseValue (const ParameterSpec &spec, const std::string &text)
       if (!parseReal (text, real))
         throw invalid ("not a number");
       if (real < 0.0)
-        throw invalid (spec.type == ValueType::THREADS ? "must be >= 0" : "must be >= 1");
+        throw invalid (spec.type == ValueType::THREADS || spec.type == ValueType::COUNT
+                           ? "must be >= 0"
+                           : "must be >= 1");
       throw invalid ("not an integer");
     }
     const int limit = spec.type == ValueType::THREADS  ? max_threads
@@ -194,7 +213,7 @@ parseValue (const ParameterSpec &spec, const std::string &text)
     if (digits.size () > 10 || std::stoll (digits) > limit)
       throw invalid ("must be at most " + std::to_string (limit));
     value.number = static_cast<double> (std::stoll (digits));
-    if (spec.type != ValueType::THREADS && value.number < 1.0)
+    if (spec.type != ValueType::THREADS && spec.type != ValueType::COUNT && value.number < 1.0)
       throw invalid ("must be >= 1");
     return value;
   }
@@ -354,15 +373,56 @@ parseCommandLine (int argc, const char *const *argv)
     }
   }
 
+  const bool temporal = std::any_of (options.steps.begin (), options.steps.end (),
+                                     [] (const Step &s) { return s.kind == StepKind::TEMPORAL; });
   if (files.empty ())
-    throw UsageError ("missing the input and output files (see -h)");
+    throw UsageError (temporal ? "missing the input files and the output folder (see -h)"
+                               : "missing the input and output files (see -h)");
   if (files.size () == 1)
-    throw UsageError ("missing the output file (see -h)");
-  if (files.size () > 2)
-    throw UsageError ("unexpected argument '" + printable (files[2], 80) +
-                      "': one input and one output file");
-  options.input = fileArgument (files[0]);
-  options.output = fileArgument (files[1]);
+    throw UsageError (temporal ? "missing the output folder (the last argument, see -h)"
+                               : "missing the output file (see -h)");
+  if (temporal)
+  {
+    // A sequence: the inputs in time order, then the folder of the results, each under
+    // its input's file name.
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path folder = files.back ();
+    if (hasExtension (files.back ()))
+      throw UsageError ("with -temporal the last argument is the output folder, not a file ('" +
+                        printable (files.back (), 80) + "')");
+    if (!fs::is_directory (folder, ec))
+      throw UsageError ("output folder '" + printable (files.back (), 80) + "' does not exist");
+    std::vector<std::string> names;
+    for (std::size_t f = 0; f + 1 < files.size (); ++f)
+    {
+      const std::string input = fileArgument (files[f]);
+      const std::string name = fs::path (input).filename ().string ();
+      if (std::find (names.begin (), names.end (), name) != names.end ())
+        throw UsageError ("two inputs are named '" + printable (name, 80) +
+                          "': their results would overwrite each other in the output folder");
+      names.push_back (name);
+      const std::string output = (folder / name).string ();
+      if (fs::weakly_canonical (fs::absolute (output, ec), ec) ==
+          fs::weakly_canonical (fs::absolute (input, ec), ec))
+        throw UsageError ("the output folder holds the input '" + printable (input, 80) +
+                          "': its result would overwrite it");
+      options.inputs.push_back (input);
+      options.outputs.push_back (output);
+    }
+    options.input = options.inputs.front ();
+    options.output = options.outputs.front ();
+  }
+  else
+  {
+    if (files.size () > 2)
+      throw UsageError ("unexpected argument '" + printable (files[2], 80) +
+                        "': one input and one output file (several inputs need a -temporal step)");
+    options.input = fileArgument (files[0]);
+    options.output = fileArgument (files[1]);
+    options.inputs = {options.input};
+    options.outputs = {options.output};
+  }
 
   if (options.steps.empty ())
   {
@@ -370,6 +430,22 @@ parseCommandLine (int argc, const char *const *argv)
     options.steps.push_back (Step{StepKind::OUTLIERS, {}});
     options.steps.push_back (Step{StepKind::TV, {}});
   }
+  // -solver belongs to the Tikhonov smoother, -norm to TV: a -temporal step takes the one
+  // of its -smoother (given for the step itself: an error otherwise; given before the
+  // steps: not passed on).
+  const auto smootherOf = [] (const Step &step) {
+    return step.has ("smoother") ? step.parameters.at ("smoother").text : std::string ("tikhonov");
+  };
+  const auto appliesTo = [&] (const std::string &name, const Step &step) {
+    return step.kind != StepKind::TEMPORAL ||
+           !((name == "solver" && smootherOf (step) != "tikhonov") ||
+             (name == "norm" && smootherOf (step) != "tv"));
+  };
+  for (std::size_t s = 0; s < options.steps.size (); ++s)
+    for (const char *name : {"solver", "norm"})
+      if (options.steps[s].has (name) && !appliesTo (name, options.steps[s]))
+        throw UsageError ("step " + std::to_string (s + 1) + " (-temporal): -" + name +
+                          " does not apply to -smoother " + smootherOf (options.steps[s]));
   // Parameters given before the first step go to every step that has them, unless the
   // step sets them itself (for the outliers' threshold: any of the three rules).
   if (std::count_if (std::begin (threshold_rules), std::end (threshold_rules),
@@ -387,6 +463,8 @@ parseCommandLine (int argc, const char *const *argv)
       if (!(spec.steps & maskOf (step.kind)))
         continue;
       used = true;
+      if (!appliesTo (name, step))
+        continue;
       bool own = step.has (name);
       if (rule)
         for (const char *r : threshold_rules)
@@ -407,6 +485,8 @@ parseCommandLine (int argc, const char *const *argv)
                         "): give only one of -threshold_ratio, -degree_threshold and "
                         "-outlier_fraction");
   }
+  if (!options.removed.empty () && temporal)
+    throw UsageError ("-removed is not available with -temporal (several inputs)");
   if (!options.removed.empty ())
   {
     if (std::none_of (options.steps.begin (), options.steps.end (),
@@ -431,6 +511,9 @@ usage (const std::string &program)
   const GraphDegreeOutlierRemoval<pcl::PointXYZ> outliers;
   const GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
   const GraphTVSmoothing<pcl::PointXYZ> tv;
+  const GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+  const bool temporal_tv =
+      dynamic_cast<const GraphTVSmoothing<pcl::PointXYZ> *> (sequence.getSmoother ().get ()) != nullptr;
   const auto text = [] (double v) {
     std::ostringstream s;
     s << v;
@@ -471,6 +554,8 @@ usage (const std::string &program)
   std::ostringstream u;
   u << "Usage: " << program << " input.{pcd,ply} output.{pcd,ply} [options]\n"
     << "         [step [step options]]...\n"
+    << "       " << program << " frame.{pcd,ply}... output_folder [options]\n"
+    << "         [step [step options]]...   (with a -temporal step: a sequence)\n"
     << "\n"
     << "Graph-based point cloud denoising (Schoenenberger, Paratte, Vandergheynst 2015): the\n"
     << "steps run in the order given, each on the previous one's result. Every field of the\n"
@@ -485,6 +570,11 @@ usage (const std::string &program)
     << "               in an epsilon-radius graph; points with a non-finite x, y, z go too\n"
     << "  -tikhonov    GraphTikhonovSmoothing: (I + 2 gamma L) x = f on the k-NN graph\n"
     << "  -tv          GraphTVSmoothing: graph total variation, keeps edges sharper\n"
+    << "  -temporal    GraphSequenceSmoothing: the inputs are the frames of a sequence (in\n"
+    << "               time order, one coordinate system); each frame is smoothed on the\n"
+    << "               spatio-temporal graph of its neighbouring frames. The other steps run\n"
+    << "               on each frame alone. The last argument is then an existing folder,\n"
+    << "               where each result is written under its input's file name\n"
     << "Smoothing steps leave points with a non-finite x, y, z where they are.\n"
     << "\n"
     << "Step options follow their step and set it alone, as \"-name value\" or as\n"
@@ -512,7 +602,7 @@ usage (const std::string &program)
     << "  -memory_limit MB        refuse up front a cloud whose estimated peak memory is\n"
     << "                          above MB megabytes; 0 = this machine's memory (default: 0)\n"
     << "\n"
-    << "-tikhonov and -tv options:\n"
+    << "-tikhonov, -tv and -temporal options:\n"
     << "  -k N                    neighbours per point in the graph; >= 1 (default: " << k << ")\n"
     << "  -sigma X                theta of the weights; >= 0\n"
     << "                          (default: " << sigma << ")\n"
@@ -537,12 +627,22 @@ usage (const std::string &program)
     << "                          (default: " << tolerance << ")\n"
     << "  -max_iterations N       solver iterations per pass; >= 1\n"
     << "                          (default: " << iterations << ")\n"
-    << "  -solver cg|cholmod      -tikhonov only (default: " << solver << ")\n"
+    << "  -solver cg|cholmod      Tikhonov only (default: " << solver << ")\n"
     << "  -norm isotropic|anisotropic\n"
-    << "                          -tv only (default: " << norm << ")\n"
+    << "                          TV only (default: " << norm << ")\n"
     << "  -threads N              worker threads (default: " << smoothing_threads << ")\n"
     << "  -memory_limit MB        refuse up front a cloud whose estimated peak memory is\n"
     << "                          above MB megabytes; 0 = this machine's memory (default: 0)\n"
+    << "\n"
+    << "-temporal options (and the smoothing options above, for its smoother):\n"
+    << "  -smoother tikhonov|tv   the smoothing run on the spatio-temporal graph\n"
+    << "                          (default: " << (temporal_tv ? "tv" : "tikhonov") << ")\n"
+    << "  -k2 N                   neighbours of each point in each other frame of the\n"
+    << "                          window (k is those in its own frame); 0 = frame by frame\n"
+    << "                          (default: " << sequence.getKTemporal () << ")\n"
+    << "  -window N               frames t - N ... t + N take part in frame t (default: "
+    << sequence.getTemporalWindow () << ")\n"
+    << p << " f0.pcd f1.pcd f2.pcd out_folder -outliers -temporal k2=3\n"
     << "\n"
     << "Other options:\n"
     << "  -removed FILE           also write the points removed by the -outliers steps, with\n"

@@ -49,7 +49,10 @@ struct Step
 struct Options
 {
   bool help = false;
-  std::string input, output;
+  std::string input, output;  ///< the first input and its output
+  /** Every input, in time order with -temporal (else the one input), and where each
+   *  result goes (with -temporal: the output folder / the input's file name). */
+  std::vector<std::string> inputs, outputs;
   std::string removed;  ///< where the removed points go; empty: nowhere
   bool binary = true;
   bool quiet = false;

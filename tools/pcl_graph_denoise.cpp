@@ -4,9 +4,11 @@
  *
  * The command-line tool: reads a .pcd or .ply file with all its fields, runs a chain of
  * the library's filters on its x, y, z (outlier removal, Tikhonov and TV smoothing, in
- * the order given) and writes the result with every other field untouched.
+ * the order given) and writes the result with every other field untouched; with a
+ * -temporal step, on the frames of a sequence (several inputs, one output folder).
  *
  *   pcl_graph_denoise input.{pcd,ply} output.{pcd,ply} [options] [step [step options]]...
+ *   pcl_graph_denoise frame.{pcd,ply}... folder [options] [step [step options]]... -temporal
  *
  * See usage() in options.cpp (or run with -h) for the options.
  */
@@ -16,6 +18,7 @@
 #include "stderr_capture.h"
 
 #include <pcl_graph_denoise/graph_degree_outlier_removal.h>
+#include <pcl_graph_denoise/graph_sequence_smoothing.h>
 #include <pcl_graph_denoise/graph_tikhonov_smoothing.h>
 #include <pcl_graph_denoise/graph_tv_smoothing.h>
 
@@ -27,8 +30,10 @@
 #include <cstdio>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <new>
 #include <string>
+#include <vector>
 
 using namespace pcl_graph_denoise::tools;
 using pcl::console::print_highlight;
@@ -156,6 +161,21 @@ configure (pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &filter, const Step 
   }
 }
 
+/** The parameters of a step that belong to one smoother: -solver (Tikhonov), -norm (TV). */
+void
+configureSolvers (const Step &step, pcl_graph_denoise::GraphTikhonovSmoothing<pcl::PointXYZ> &tikhonov,
+                  pcl_graph_denoise::GraphTVSmoothing<pcl::PointXYZ> &tv)
+{
+  if (step.has ("solver"))
+    tikhonov.setSolver (step.parameters.at ("solver").text == "cholmod"
+                            ? pcl_graph_denoise::core::TikhonovSolver::CHOLMOD
+                            : pcl_graph_denoise::core::TikhonovSolver::CONJUGATE_GRADIENT);
+  if (step.has ("norm"))
+    tv.setNorm (step.parameters.at ("norm").text == "anisotropic"
+                    ? pcl_graph_denoise::core::TotalVariationNorm::ANISOTROPIC
+                    : pcl_graph_denoise::core::TotalVariationNorm::ISOTROPIC);
+}
+
 /** Removes the outliers of `cloud` (whole points); the removed ones go to `removed`. */
 void
 removeOutliers (const Options &options, std::size_t s, const XyzFields &xyz,
@@ -235,14 +255,7 @@ smooth (const Options &options, std::size_t s, const XyzFields &xyz, pcl::PCLPoi
           ? static_cast<pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &> (tikhonov)
           : tv;
   configure (filter, step);
-  if (step.has ("solver"))
-    tikhonov.setSolver (step.parameters.at ("solver").text == "cholmod"
-                            ? pcl_graph_denoise::core::TikhonovSolver::CHOLMOD
-                            : pcl_graph_denoise::core::TikhonovSolver::CONJUGATE_GRADIENT);
-  if (step.has ("norm"))
-    tv.setNorm (step.parameters.at ("norm").text == "anisotropic"
-                    ? pcl_graph_denoise::core::TotalVariationNorm::ANISOTROPIC
-                    : pcl_graph_denoise::core::TotalVariationNorm::ISOTROPIC);
+  configureSolvers (step, tikhonov, tv);
 
   const Cloud::Ptr input = xyz.extract (cloud);
   const std::size_t finite = countFinite (*input);
@@ -306,6 +319,91 @@ smooth (const Options &options, std::size_t s, const XyzFields &xyz, pcl::PCLPoi
   info (", %s\n", report.converged ? "converged" : "NOT converged (tolerance not reached)");
 }
 
+/** Smooths x, y, z of every frame with a GraphSequenceSmoothing, streaming the frames
+ *  through it (the batch result, frame by frame, with progress). */
+void
+smoothSequence (const Options &options, std::size_t s, const std::vector<XyzFields> &xyz,
+                std::vector<CloudFile> &files)
+{
+  const Step &step = options.steps[s];
+  const auto tikhonov = std::make_shared<pcl_graph_denoise::GraphTikhonovSmoothing<pcl::PointXYZ>> ();
+  const auto tv = std::make_shared<pcl_graph_denoise::GraphTVSmoothing<pcl::PointXYZ>> ();
+  const bool use_tv = step.has ("smoother") && step.parameters.at ("smoother").text == "tv";
+  pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ>::Ptr smoother;
+  if (use_tv)
+    smoother = tv;
+  else
+    smoother = tikhonov;
+  configure (*smoother, step);
+  configureSolvers (step, *tikhonov, *tv);
+  pcl_graph_denoise::GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+  sequence.setSmoother (smoother);
+  if (step.has ("k2"))
+    sequence.setKTemporal (static_cast<int> (step.parameters.at ("k2").number));
+  if (step.has ("window"))
+    sequence.setTemporalWindow (static_cast<int> (step.parameters.at ("window").number));
+  info ("  %s smoother, k2 ", use_tv ? "TV" : "Tikhonov");
+  value ("%d", sequence.getKTemporal ());
+  info (", window ");
+  value ("%d", sequence.getTemporalWindow ());
+  info (", %zu frames\n", files.size ());
+
+  std::vector<Cloud::Ptr> frames;
+  for (std::size_t f = 0; f < files.size (); ++f)
+    frames.push_back (xyz[f].extract (files[f].cloud));
+  std::size_t done = 0;
+  const auto store = [&] (const Cloud::Ptr &result) {
+    const std::size_t f = done++;
+    const std::size_t moved = xyz[f].writeBack (files[f].cloud, *frames[f], *result);
+    info ("  frame ");
+    value ("%zu/%zu", f + 1, files.size ());
+    info (" (%s): ", options.inputs[f].c_str ());
+    value ("%zu", frames[f]->size ());
+    info (" points, ");
+    value ("%zu", moved);
+    info (" moved; gamma ");
+    value ("%g", smoother->getUsedGamma ());
+    const auto &report = smoother->getSolverReport ();
+    info (", solver ");
+    value ("%d", report.iterations);
+    info (" iterations, %s\n", report.converged ? "converged" : "NOT converged");
+  };
+  const auto failed = [&] (const std::string &captured) {
+    const std::string why = mainMessage (captured);
+    return Error (stepName (options, s) + " failed on " + options.inputs[done] +
+                  (why.empty () ? "" : ": " + why));
+  };
+  for (std::size_t f = 0; f < files.size (); ++f)
+  {
+    Cloud::Ptr ready;
+    std::string captured;
+    bool ok = false;
+    {
+      StderrCapture capture;
+      ok = sequence.push (frames[f], ready);
+      captured = capture.release ();
+    }
+    if (!ok)
+      throw failed (captured);
+    forward (captured);
+    if (ready)
+      store (ready);
+  }
+  std::vector<Cloud::Ptr> rest;
+  std::string captured;
+  bool ok = false;
+  {
+    StderrCapture capture;
+    ok = sequence.flush (rest);
+    captured = capture.release ();
+  }
+  for (const auto &result : rest)
+    store (result);
+  if (!ok)
+    throw failed (captured);
+  forward (captured);
+}
+
 /** Recomputes is_dense: true when every point has a finite x, y, z. */
 void
 updateDensity (const XyzFields &xyz, pcl::PCLPointCloud2 &cloud)
@@ -325,34 +423,41 @@ run (const Options &options)
 {
   pcl::console::TicToc total;
   total.tic ();
-  PendingFiles::checkWritable (options.output);
+  for (const auto &output : options.outputs)
+    PendingFiles::checkWritable (output);
   if (!options.removed.empty ())
     PendingFiles::checkWritable (options.removed);
 
   pcl::console::TicToc timer;
-  timer.tic ();
-  CloudFile file = loadCloud (options.input);
-  const XyzFields xyz (file.cloud, options.input);
-  const std::size_t size = std::size_t (file.cloud.width) * file.cloud.height;
-  const std::size_t finite = countFinite (*xyz.extract (file.cloud));
-  if (finite == 0)
-    throw Error (options.input + ": no point has a finite x, y, z");
-  highlight ("Loading ");
-  value ("%s ", options.input.c_str ());
-  info ("[done, ");
-  value ("%g", timer.toc ());
-  info (" ms : ");
-  value ("%zu", size);
-  info (" points, ");
-  if (file.cloud.height > 1)
+  std::vector<CloudFile> files;
+  std::vector<XyzFields> xyz;
+  for (const auto &input : options.inputs)
   {
-    info ("organised ");
-    value ("%u x %u", file.cloud.width, file.cloud.height);
-    info (", ");
+    timer.tic ();
+    files.push_back (loadCloud (input));
+    const pcl::PCLPointCloud2 &cloud = files.back ().cloud;
+    xyz.emplace_back (cloud, input);
+    const std::size_t size = std::size_t (cloud.width) * cloud.height;
+    const std::size_t finite = countFinite (*xyz.back ().extract (cloud));
+    if (finite == 0)
+      throw Error (input + ": no point has a finite x, y, z");
+    highlight ("Loading ");
+    value ("%s ", input.c_str ());
+    info ("[done, ");
+    value ("%g", timer.toc ());
+    info (" ms : ");
+    value ("%zu", size);
+    info (" points, ");
+    if (cloud.height > 1)
+    {
+      info ("organised ");
+      value ("%u x %u", cloud.width, cloud.height);
+      info (", ");
+    }
+    value ("%zu", finite);
+    info (" with a finite x, y, z]\n  Available dimensions: ");
+    value ("%s\n", pcl::getFieldsList (cloud).c_str ());
   }
-  value ("%zu", finite);
-  info (" with a finite x, y, z]\n  Available dimensions: ");
-  value ("%s\n", pcl::getFieldsList (file.cloud).c_str ());
 
   pcl::PCLPointCloud2 removed;
   for (std::size_t s = 0; s < options.steps.size (); ++s)
@@ -363,16 +468,30 @@ run (const Options &options)
     info (" (%s)%s, parameters set: %s\n", stepClass (step.kind),
           options.default_chain ? ", default chain" : "", describeParameters (step).c_str ());
     timer.tic ();
-    if (step.kind == StepKind::OUTLIERS)
-      removeOutliers (options, s, xyz, file.cloud, removed);
+    if (step.kind == StepKind::TEMPORAL)
+      smoothSequence (options, s, xyz, files);
     else
-      smooth (options, s, xyz, file.cloud);
+      for (std::size_t f = 0; f < files.size (); ++f)
+      {
+        if (files.size () > 1)
+        {
+          info ("  frame ");
+          value ("%zu/%zu", f + 1, files.size ());
+          info (" (%s)\n", options.inputs[f].c_str ());
+        }
+        if (step.kind == StepKind::OUTLIERS)
+          removeOutliers (options, s, xyz[f], files[f].cloud, removed);
+        else
+          smooth (options, s, xyz[f], files[f].cloud);
+      }
     info ("  [done, ");
     value ("%g", timer.toc ());
     info (" ms]\n");
   }
-  if (file.cloud.width * file.cloud.height == 0)
-    throw Error ("no point is left after the steps: nothing to write");
+  for (std::size_t f = 0; f < files.size (); ++f)
+    if (files[f].cloud.width * files[f].cloud.height == 0)
+      throw Error ((files.size () > 1 ? options.inputs[f] + ": " : std::string ()) +
+                   "no point is left after the steps: nothing to write");
 
   PendingFiles outputs;
   const auto save = [&] (const std::string &path, const CloudFile &cloud) {
@@ -386,15 +505,18 @@ run (const Options &options)
     value ("%u", cloud.cloud.width * cloud.cloud.height);
     info (" points]\n");
   };
-  updateDensity (xyz, file.cloud);
-  save (options.output, file);
+  for (std::size_t f = 0; f < files.size (); ++f)
+  {
+    updateDensity (xyz[f], files[f].cloud);
+    save (options.outputs[f], files[f]);
+  }
   if (!options.removed.empty ())
   {
     CloudFile gone;
-    gone.cloud = removed.fields.empty () ? selectPoints (file.cloud, {}) : removed;
-    gone.origin = file.origin;
-    gone.orientation = file.orientation;
-    updateDensity (xyz, gone.cloud);
+    gone.cloud = removed.fields.empty () ? selectPoints (files[0].cloud, {}) : removed;
+    gone.origin = files[0].origin;
+    gone.orientation = files[0].orientation;
+    updateDensity (xyz[0], gone.cloud);
     save (options.removed, gone);
   }
   outputs.commit ();

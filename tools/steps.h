@@ -18,7 +18,8 @@ enum class StepKind
 {
   OUTLIERS,  ///< GraphDegreeOutlierRemoval
   TIKHONOV,  ///< GraphTikhonovSmoothing
-  TV         ///< GraphTVSmoothing
+  TV,        ///< GraphTVSmoothing
+  TEMPORAL   ///< GraphSequenceSmoothing over several inputs (command-line tool only)
 };
 
 /** \brief The option naming a step ("-outliers", "-tikhonov", "-tv"); without its
@@ -32,6 +33,8 @@ stepOption (StepKind kind)
     return "-outliers";
   case StepKind::TIKHONOV:
     return "-tikhonov";
+  case StepKind::TEMPORAL:
+    return "-temporal";
   case StepKind::TV:
     break;
   }
@@ -55,6 +58,8 @@ stepClass (StepKind kind)
     return "GraphDegreeOutlierRemoval";
   case StepKind::TIKHONOV:
     return "GraphTikhonovSmoothing";
+  case StepKind::TEMPORAL:
+    return "GraphSequenceSmoothing";
   case StepKind::TV:
     break;
   }

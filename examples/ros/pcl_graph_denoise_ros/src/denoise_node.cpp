@@ -85,6 +85,7 @@ parameterNames (StepKind kind)
   case StepKind::TIKHONOV:
     return tikhonov;
   case StepKind::TV:
+  case StepKind::TEMPORAL:  // not a step of the node (parseKind refuses it)
     break;
   }
   return tv;
