@@ -6,15 +6,16 @@
  * the filters as they run by default (normal displacement and shrinkage correction on).
  * Calibration set, kept apart from the evaluation's PU-GAN meshes: the CAD benchmark's
  * block, joint, part-Lp and casting, the Stanford dragon and decimated bunny (each
- * normalised to the unit sphere, sampled uniformly), a sphere and a cube; 10,000 and
- * 50,000 points; Gaussian noise 0.5%, 1% and 2%. Error: the protocol's point-to-mesh
+ * normalised to the unit sphere, sampled uniformly), a sphere and a cube; 10,000, 20,000
+ * and 50,000 points; Gaussian noise 0.5%, 1%, 2% and 3%. Error: the protocol's point-to-mesh
  * distance (squared, both ways) for the meshes, the mean distance to the surface for the
  * sphere and the cube.
  *
  *   calibrate_gamma [--data DIR]
  *
- * For every cloud, both filters run at multiples m (1/4 to 16) of the current default
- * gamma; the best m is fitted as log m = a + b log r with r = estimated noise / spacing
+ * For every cloud, both filters run at multiples m (1/4 to 16, steps of sqrt 2) of the
+ * current default gamma (a "raw" line per cloud and filter gives the errors of the
+ * sweep); the best m is fitted as log m = a + b log r with r = estimated noise / spacing
  * (the quantity the rules scale with), and the fitted rule is run to report, over the
  * set, the geometric mean of its error over the best of the sweep (1 = always the best)
  * next to the current rule's.
@@ -42,9 +43,13 @@ struct Sample
   std::vector<double> error;      // per multiple
   double best = 0.0, best_m = 0.0;
   double gamma = 0.0;             // the current default gamma
+  double noise = 0.0, spacing = 0.0;  // estimated noise, spacing (sigma * sqrt 2)
 };
 
-const std::vector<double> kMultiples = {0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0};
+// 1/4 to 16 in steps of sqrt 2; the default (1) is kMultiples[kDefault].
+const std::vector<double> kMultiples = {0.25, 0.354, 0.5, 0.707, 1.0, 1.414, 2.0,
+                                        2.828, 4.0, 5.657, 8.0, 11.31, 16.0};
+constexpr std::size_t kDefault = 4;
 
 template <typename Filter>
 Sample
@@ -56,7 +61,9 @@ sweep (const Cloud::Ptr &cloud, const std::function<double (const Cloud &)> &err
   filter.filter (out);
   Sample s;
   s.gamma = filter.getUsedGamma ();
-  s.r = filter.getEstimatedNoise () / (std::sqrt (2.0) * filter.getUsedSigma ());  // sigma = spacing / sqrt 2
+  s.noise = filter.getEstimatedNoise ();
+  s.spacing = std::sqrt (2.0) * filter.getUsedSigma ();  // sigma = spacing / sqrt 2
+  s.r = s.noise / s.spacing;
   s.best = std::numeric_limits<double>::infinity ();
   for (double m : kMultiples)
   {
@@ -134,8 +141,8 @@ main (int argc, char **argv)
   std::vector<const Shape *> of;
   std::uint64_t seed = 7000;
   for (const auto &shape : shapes)
-    for (std::size_t n : {10000, 50000})
-      for (double noise : {0.005, 0.01, 0.02})
+    for (std::size_t n : {10000, 20000, 50000})
+      for (double noise : {0.005, 0.01, 0.02, 0.03})
       {
         clouds.emplace_back (new Cloud (shape.sample (n, noise, seed += 2)));
         of.push_back (&shape);
@@ -144,8 +151,16 @@ main (int argc, char **argv)
         std::printf ("%-32s %5zu noise %.3f r %.3f | best multiple: Tikhonov %g (%.3gx the default's "
                      "error), TV %g (%.3gx)\n",
                      shape.name.c_str (), n, noise, tikhonov.back ().r, tikhonov.back ().best_m,
-                     tikhonov.back ().error[2] / tikhonov.back ().best, tv.back ().best_m,
-                     tv.back ().error[2] / tv.back ().best);
+                     tikhonov.back ().error[kDefault] / tikhonov.back ().best, tv.back ().best_m,
+                     tv.back ().error[kDefault] / tv.back ().best);
+        for (const Sample *sample : {&tikhonov.back (), &tv.back ()})
+        {
+          std::printf ("raw %s %s %zu %g %g %g", sample == &tv.back () ? "tv" : "tikhonov",
+                       shape.name.c_str (), n, noise, sample->noise, sample->spacing);
+          for (double e : sample->error)
+            std::printf (" %g", e);
+          std::printf ("\n");
+        }
       }
 
   for (int which = 0; which < 2; ++which)
@@ -171,7 +186,7 @@ main (int argc, char **argv)
         f.setGamma (m * samples[i].gamma);
         f.filter (out);
       }
-      log_current += std::log (samples[i].error[2] / samples[i].best);
+      log_current += std::log (samples[i].error[kDefault] / samples[i].best);
       log_fitted += std::log (of[i]->error (out) / samples[i].best);
     }
     std::printf ("%s: best multiple ~ %.3g r^%.3f; error over the best of the sweep, geometric "
