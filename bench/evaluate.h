@@ -38,6 +38,8 @@ int
 bunny (const Options &options);
 int
 outliers (const Options &options);
+int
+sequences (const Options &options);
 
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 
