@@ -28,6 +28,9 @@ enum class LocalSurface
  *  pass runs, so a huge count (INT_MAX) would run for ever. */
 constexpr int kMaxGraphIterations = 1000;
 
+template <typename PointT>
+class GraphSequenceSmoothing;
+
 /** \brief What the graph smoothing filters share: the k-NN graph of the points, the
  *  data-derived strength, re-graphing, and the PCL contract of a smoother.
  *
@@ -45,9 +48,6 @@ constexpr int kMaxGraphIterations = 1000;
  * setShrinkageCorrection, measured in docs/evaluation.md); turning both off gives the
  * paper's filter exactly.
  */
-template <typename PointT>
-class GraphSequenceSmoothing;
-
 template <typename PointT>
 class GraphSmoothing : public pcl::Filter<PointT>
 {

@@ -106,9 +106,9 @@ gatherFinitePoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &in
   return out;
 }
 
-/** \brief Moves each point `cloud[cloud_index[r]]` by its displacement `position.row (r)
- *  - start.row (r)` (computed in double, so a point that did not move keeps its exact
- *  coordinates); only x, y and z change. Returns false, leaving the cloud partly
+/** \brief Moves the point of the cloud named by row r of `cloud_index` by the
+ *  displacement of row r (position minus start, computed in double, so a point that did
+ *  not move keeps its exact coordinates); only x, y and z change. Returns false, leaving the cloud partly
  *  written, when a moved coordinate is not finite (the positions overflowed). */
 template <typename PointT>
 bool
