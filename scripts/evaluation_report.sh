@@ -230,6 +230,20 @@ trail jet and MLS (P2M 2.54 for Tikhonov, 3.56 for TV, against 1.67 and 1.64), w
 its best γ (1.61) matches them. The density term of the rule, (σ̂/s)^1.5, grows too slowly with
 the density; recalibrating it (on the calibration set, not on these meshes) is the next step.
 
+A first pass of that recalibration (`build/bench/calibrate_gamma`, now at 10,000, 20,000 and
+50,000 points, σ = 0.5, 1, 2 and 3%, multiples in steps of √2; stopped after the block, the
+joint and part-Lp, 36 clouds) confirms it on meshes kept apart: at a fixed σ the best multiple of
+the derived γ grows with the density (Tikhonov: ¼–1.3 at 10,000 points, 0.7–1.9 at 20,000,
+1.5–3.8 at 50,000; TV up to 8), and the derived γ then costs up to 1.5× (Tikhonov) and 1.9× (TV)
+the error of the best one at 50,000 points and 3%. A least-squares fit gives best multiple ∝
+σ̂^0.88 s^−2.06 (Tikhonov) and σ̂^1.26 s^−2.20 (TV), i.e. γ · mean degree ∝ σ̂^2.4 / s^3.6: not
+invariant to the cloud's unit. On these clouds, all scaled to the unit sphere, the object's
+size is the missing third length; a rule that stays unit-free needs a length measured on the
+surface (its feature size, e.g. from the curvature of the quadric fits), which is the open work.
+Both inputs of the rule also blur at high noise: the k-NN spacing grows with the noise (block,
+50,000 points: 0.0178 at σ = 0.5%, 0.0283 at 3%, the distance to neighbours inside a thick
+shell) and σ̂ falls short of σ (0.0225 for 0.03).
+
 ## Not yet in this report
 
 WLOP in the full table (`PGD_WLOP=1`), and CGAL `remove_outliers` on the real clouds beyond the

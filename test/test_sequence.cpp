@@ -284,6 +284,34 @@ TEST (SequenceSmoothing, InvalidParametersAndNullFramesAreRefusedWithoutOutput)
   EXPECT_TRUE (out.empty ());
 }
 
+TEST (SequenceSmoothing, AFailedSolveInAStreamLosesOnlyThatFrameAndSaysSo)
+{
+  const Frames frames = sphereSequence (4, 600, 0.02, 85);
+  GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+  Outputs batch;
+  ASSERT_TRUE (sequence.filter (frames, batch));
+  Cloud::Ptr ready;
+  ASSERT_TRUE (sequence.push (frames[0], ready));
+  // Frame 0's solve is refused (memory limit): push reports it, frame 0 is gone.
+  sequence.getSmoother ()->setMemoryLimit (1000);
+  EXPECT_FALSE (sequence.push (frames[1], ready));
+  EXPECT_FALSE (ready);
+  EXPECT_EQ (sequence.getNumberOfPendingFrames (), 1u);
+  // The stream goes on: frame 1 comes out as in the batch.
+  sequence.getSmoother ()->setMemoryLimit (0);
+  ASSERT_TRUE (sequence.push (frames[2], ready));
+  ASSERT_TRUE (ready);
+  EXPECT_TRUE (sameCloud (*ready, *batch[1]));
+  ASSERT_TRUE (sequence.push (frames[3], ready));
+  EXPECT_TRUE (sameCloud (*ready, *batch[2]));
+  // A failing flush returns false and what it produced before the failure (none here).
+  sequence.getSmoother ()->setMemoryLimit (1000);
+  Outputs rest;
+  EXPECT_FALSE (sequence.flush (rest));
+  EXPECT_TRUE (rest.empty ());
+  EXPECT_EQ (sequence.getNumberOfHeldFrames (), 0u);
+}
+
 TEST (SequenceSmoothing, DegenerateSequencesAreDefined)
 {
   GraphSequenceSmoothing<pcl::PointXYZ> sequence;
