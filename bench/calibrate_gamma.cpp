@@ -11,7 +11,7 @@
  * distance (squared, both ways) for the meshes, the mean distance to the surface for the
  * sphere and the cube.
  *
- *   calibrate_gamma [--data DIR]
+ *   calibrate_gamma [--data DIR] [--only NAME,NAME]   (--only: the shapes whose names contain one)
  *
  * For every cloud, both filters run at multiples m (1/4 to 16, steps of sqrt 2) of the
  * current default gamma (a "raw" line per cloud and filter gives the errors of the
@@ -98,8 +98,33 @@ main (int argc, char **argv)
 {
   std::setvbuf (stdout, nullptr, _IOLBF, 0);
   std::string data = PGD_SHARED_DATA;
-  if (argc == 3 && !std::strcmp (argv[1], "--data"))
-    data = argv[2];
+  std::string only;  // comma-separated substrings of the shape names to run
+  for (int a = 1; a + 1 < argc; a += 2)
+  {
+    if (!std::strcmp (argv[a], "--data"))
+      data = argv[a + 1];
+    else if (!std::strcmp (argv[a], "--only"))
+      only = std::string (",") + argv[a + 1] + ",";
+    else
+    {
+      std::fprintf (stderr, "usage: %s [--data DIR] [--only NAME,NAME]\n", argv[0]);
+      return 2;
+    }
+  }
+  if (argc % 2 == 0)
+  {
+    std::fprintf (stderr, "usage: %s [--data DIR] [--only NAME,NAME]\n", argv[0]);
+    return 2;
+  }
+  const auto wanted = [&] (const std::string &name) {
+    if (only.empty ())
+      return true;
+    std::size_t start = 1;
+    for (std::size_t comma; (comma = only.find (',', start)) != std::string::npos; start = comma + 1)
+      if (comma > start && name.find (only.substr (start, comma - start)) != std::string::npos)
+        return true;
+    return false;
+  };
   struct Shape
   {
     std::string name;
@@ -144,7 +169,10 @@ main (int argc, char **argv)
     for (std::size_t n : {10000, 20000, 50000})
       for (double noise : {0.005, 0.01, 0.02, 0.03})
       {
-        clouds.emplace_back (new Cloud (shape.sample (n, noise, seed += 2)));
+        seed += 2;  // the same seeds whichever shapes run
+        if (!wanted (shape.name))
+          continue;
+        clouds.emplace_back (new Cloud (shape.sample (n, noise, seed)));
         of.push_back (&shape);
         tikhonov.push_back (sweep<GraphTikhonovSmoothing<pcl::PointXYZ>> (clouds.back (), shape.error));
         tv.push_back (sweep<GraphTVSmoothing<pcl::PointXYZ>> (clouds.back (), shape.error));
