@@ -199,9 +199,8 @@ GraphSequenceSmoothing<PointT>::denoiseFrame (const std::vector<PointCloudConstP
   const GatheredPoints &own = gathered[centre];
   if (own.cloud_index.empty ())
   {
-    if (!frame.empty ())
-      PCL_WARN ("[pcl_graph_denoise::%s::filter] A frame of %zu points has no finite point; "
-                "it is returned unchanged.\n", kName, frame.size ());
+    PCL_WARN ("[pcl_graph_denoise::%s::filter] A frame of %zu points has no finite point; "
+              "it is returned unchanged.\n", kName, frame.size ());
     return true;
   }
   if (!smoother.automatic_gamma_ && smoother.gamma_ == 0.0)
