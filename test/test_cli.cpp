@@ -1064,6 +1064,28 @@ TEST (Cli, TemporalStepWritesEveryFrameToTheFolderAsTheLibraryDoes)
   }
 }
 
+TEST (Cli, SmoothingReportsEachPassGraphAsItIsBuilt)
+{
+  const fs::path dir = testFolder ();
+  savePcd (dir / "in.pcd", sphereWithOutliers ());
+  const std::vector<std::string> args = {"in.pcd", "out.pcd", "-tikhonov", "-graph_iterations", "2", "-tv"};
+  const ToolRun run = runTool (dir, args);
+  ASSERT_EQ (run.code, 0) << describe (args, run);
+  // Two passes of -tikhonov, one of -tv, on the 2100 points of the file.
+  std::size_t lines_seen = 0;
+  for (std::size_t at = 0; (at = run.err.find ("graph of 2100 points", at)) != std::string::npos; ++at)
+    ++lines_seen;
+  EXPECT_EQ (lines_seen, 3u) << run.err;
+  EXPECT_NE (run.err.find ("  pass 2: graph of 2100 points, "), std::string::npos) << run.err;
+  // Before the step's summary, not after it.
+  EXPECT_LT (run.err.find ("pass 1: graph"), run.err.find ("moved")) << run.err;
+  std::vector<std::string> quiet = args;
+  quiet.push_back ("-q");
+  const ToolRun silent = runTool (dir, quiet);
+  ASSERT_EQ (silent.code, 0);
+  EXPECT_EQ (silent.err.find ("graph of"), std::string::npos) << silent.err;
+}
+
 TEST (Cli, TemporalCommandLinesAreChecked)
 {
   const fs::path dir = testFolder ();

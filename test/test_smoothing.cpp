@@ -20,6 +20,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <random>
 
 using namespace pcl_graph_denoise;
@@ -494,6 +495,61 @@ TEST (SmoothingQuality, ExplicitParametersAreUsed)
   for (std::size_t i = 0; i < cube->size (); ++i)
     difference += ((*isotropic)[i].getVector3fMap () - (*anisotropic)[i].getVector3fMap ()).norm ();
   EXPECT_GT (difference / cube->size (), 1e-4);
+}
+
+TEST (SmoothingQuality, ProgressReportsEachGraphAndTheSolverWithoutChangingTheResult)
+{
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> (synthetic::noisySphere (3000, 1.0, 0.02, 41));
+  (*cloud)[7].x = std::numeric_limits<float>::quiet_NaN ();
+  for (bool tv : {false, true})
+  {
+    std::unique_ptr<GraphSmoothing<pcl::PointXYZ>> filter;
+    if (tv)
+      filter.reset (new GraphTVSmoothing<pcl::PointXYZ>);
+    else
+      filter.reset (new GraphTikhonovSmoothing<pcl::PointXYZ>);
+    filter->setInputCloud (cloud);
+    filter->setGraphIterations (2);
+    filter->setGamma (tv ? 0.05 : 5.0);  // enough iterations to report
+    filter->setTolerance (tv ? 1e-6 : 1e-9);
+    pcl::PointCloud<pcl::PointXYZ> silent, reported;
+    filter->filter (silent);
+    std::vector<SmoothingProgress> events;
+    filter->setProgressCallback ([&] (const SmoothingProgress &e) { events.push_back (e); });
+    filter->filter (reported);
+    EXPECT_TRUE (sameCloud (silent, reported)) << (tv ? "TV" : "Tikhonov");
+    std::vector<int> graphs_per_pass (2, 0);
+    int last_iterations = 0, last_pass = 0, solving = 0;
+    for (const auto &e : events)
+    {
+      ASSERT_GE (e.pass, 0);
+      ASSERT_LT (e.pass, 2);
+      if (e.stage == SmoothingProgress::GRAPH_BUILT)
+      {
+        ++graphs_per_pass[e.pass];
+        EXPECT_EQ (e.vertices, cloud->size () - 1);  // the finite points
+        EXPECT_GT (e.edges, e.vertices * 5);
+        last_iterations = 0;
+        continue;
+      }
+      ++solving;
+      EXPECT_GE (e.pass, last_pass);
+      EXPECT_EQ (e.iterations % 10, 0);
+      EXPECT_GT (e.residual, 0.0);
+      // Iterations grow within a solve (a new solve, the twicing's, starts again).
+      if (e.iterations <= last_iterations)
+        EXPECT_EQ (e.iterations, 10);
+      last_iterations = e.iterations;
+      last_pass = e.pass;
+    }
+    EXPECT_EQ (graphs_per_pass, (std::vector<int>{1, 1}));
+    EXPECT_GT (solving, 4) << (tv ? "TV" : "Tikhonov");
+    // Without a callback nothing is called.
+    events.clear ();
+    filter->setProgressCallback ({});
+    filter->filter (reported);
+    EXPECT_TRUE (events.empty ());
+  }
 }
 
 TEST (SmoothingQuality, IterationCapWarnsAndKeepsTheIterate)

@@ -26,9 +26,11 @@
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <new>
@@ -93,6 +95,32 @@ describeParameters (const Step &step)
     text += (text.empty () ? "-" : ", -") + name + " " + (v.text.empty () ? number : v.text);
   }
   return text.empty () ? "none, the filter's defaults" : text;
+}
+
+/** The progress of a smoothing filter, written through the capture of its messages at
+ *  once: each pass's graph, and the solver's iteration and residual at most every second.
+ *  Nothing with -q. */
+std::function<void (const pcl_graph_denoise::SmoothingProgress &)>
+progressPrinter (const StderrCapture &capture)
+{
+  if (quiet)
+    return {};
+  using Clock = std::chrono::steady_clock;
+  auto last = std::make_shared<Clock::time_point> (Clock::now ());
+  return [&capture, last] (const pcl_graph_denoise::SmoothingProgress &event) {
+    char line[160];
+    const auto now = Clock::now ();
+    if (event.stage == pcl_graph_denoise::SmoothingProgress::GRAPH_BUILT)
+      std::snprintf (line, sizeof (line), "  pass %d: graph of %zu points, %zu edges\n", event.pass + 1,
+                     event.vertices, event.edges);
+    else if (now - *last >= std::chrono::seconds (1))
+      std::snprintf (line, sizeof (line), "  pass %d: solver iteration %d, residual %.3g\n",
+                     event.pass + 1, event.iterations, event.residual);
+    else
+      return;
+    *last = now;
+    capture.writeThrough (line);
+  };
 }
 
 /** Passes on what a filter printed (warnings) once it is done. */
@@ -266,7 +294,9 @@ smooth (const Options &options, std::size_t s, const XyzFields &xyz, pcl::PCLPoi
   std::string captured;
   {
     StderrCapture capture;
+    filter.setProgressCallback (progressPrinter (capture));
     filter.filter (output);
+    filter.setProgressCallback ({});
     captured = capture.release ();
   }
   if (output.size () != input->size ())
@@ -380,7 +410,9 @@ smoothSequence (const Options &options, std::size_t s, const std::vector<XyzFiel
     bool ok = false;
     {
       StderrCapture capture;
+      smoother->setProgressCallback (progressPrinter (capture));
       ok = sequence.push (frames[f], ready);
+      smoother->setProgressCallback ({});
       captured = capture.release ();
     }
     if (!ok)
@@ -394,7 +426,9 @@ smoothSequence (const Options &options, std::size_t s, const std::vector<XyzFiel
   bool ok = false;
   {
     StderrCapture capture;
+    smoother->setProgressCallback (progressPrinter (capture));
     ok = sequence.flush (rest);
+    smoother->setProgressCallback ({});
     captured = capture.release ();
   }
   for (const auto &result : rest)

@@ -35,6 +35,25 @@ StderrCapture::~StderrCapture ()
   release ();
 }
 
+void
+StderrCapture::writeThrough (const std::string &text) const
+{
+  if (saved_fd_ < 0)
+  {
+    std::fputs (text.c_str (), stderr);
+    std::fflush (stderr);
+    return;
+  }
+  std::size_t done = 0;
+  while (done < text.size ())
+  {
+    const ::ssize_t n = ::write (saved_fd_, text.data () + done, text.size () - done);
+    if (n <= 0)
+      return;
+    done += static_cast<std::size_t> (n);
+  }
+}
+
 std::string
 StderrCapture::release ()
 {

@@ -34,6 +34,11 @@ public:
   std::string
   release ();
 
+  /** \brief Writes `text` to the real stderr at once, also while capturing (progress
+   *  reports during a filter's run). */
+  void
+  writeThrough (const std::string &text) const;
+
 private:
   std::FILE *file_ = nullptr;
   int saved_fd_ = -1;

@@ -28,6 +28,23 @@ enum class LocalSurface
  *  pass runs, so a huge count (INT_MAX) would run for ever. */
 constexpr int kMaxGraphIterations = 1000;
 
+/** \brief What a smoothing filter reports while it runs (GraphSmoothing::setProgressCallback). */
+struct SmoothingProgress
+{
+  /** \brief Where the filter is. */
+  enum Stage
+  {
+    GRAPH_BUILT,  ///< a pass's graph is built: `vertices` and `edges` are set
+    SOLVING       ///< the solver is running: `iterations` and `residual` are set
+  };
+  Stage stage = GRAPH_BUILT;  ///< where the filter is
+  int pass = 0;               ///< the pass, from 0 (setGraphIterations)
+  std::size_t vertices = 0;   ///< GRAPH_BUILT: points in the graph
+  std::size_t edges = 0;      ///< GRAPH_BUILT: undirected edges
+  int iterations = 0;         ///< SOLVING: iterations done in the current solve
+  double residual = 0.0;      ///< SOLVING: the solver's stopping measure (setTolerance) now
+};
+
 template <typename PointT>
 class GraphSequenceSmoothing;
 
@@ -203,6 +220,17 @@ public:
   std::size_t
   estimateMemory (std::size_t num_points) const;
 
+  /** \brief Called while filter() runs, from the calling thread: when each pass's graph
+   *  is built (SmoothingProgress::GRAPH_BUILT), and every 10 iterations of the
+   *  conjugate gradient or at each duality-gap check of TV (SmoothingProgress::SOLVING).
+   *  For tools that report on long work (the command-line tool prints it); empty (the
+   *  default) = nothing is called. The callback must not throw. */
+  inline void
+  setProgressCallback (const std::function<void (const SmoothingProgress &)> &callback)
+  {
+    progress_ = callback;
+  }
+
   /** \brief Gamma used by the last pass of the last filter() call. */
   inline double
   getUsedGamma () const { return used_gamma_; }
@@ -268,6 +296,11 @@ protected:
   smooth (const core::PointGraph &graph, const core::Signal3 &f, double gamma,
           core::SolverReport &report) const = 0;
 
+  /** \brief The solver's progress callback for smooth(): reports SOLVING events of the
+   *  current pass through setProgressCallback's callback; empty when none is set. */
+  std::function<void (int, double)>
+  solverProgress () const;
+
   /** \brief Which computation smooth() runs, for the memory estimate. */
   virtual core::SmoothingKind
   smoothingKind () const = 0;
@@ -288,6 +321,8 @@ protected:
   int max_iterations_;            ///< setMaximumIterations
   int num_threads_ = 0;           ///< setNumberOfThreads
   std::size_t memory_limit_ = 0;  ///< setMemoryLimit (bytes, 0 = physical memory)
+  std::function<void (const SmoothingProgress &)> progress_;  ///< setProgressCallback
+  int current_pass_ = 0;          ///< the pass runPasses is in, for solverProgress
 
   double used_gamma_ = 0.0;           ///< getUsedGamma
   double used_sigma_ = 0.0;           ///< getUsedSigma

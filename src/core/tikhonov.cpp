@@ -99,6 +99,8 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
     ++it;
     report.residual = scale > 0.0 ? residual / scale : 0.0;
     report.converged = residual <= params.tolerance * scale;
+    if (params.progress && it % 10 == 0)
+      params.progress (it, report.residual);
     if (report.converged)
       break;
     const detail::Sum3 rz_new = precondition ();

@@ -223,6 +223,8 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
       // (the objective is 1-strongly convex): nothing a float output can show.
       const double scale = std::max (primal, 1e-20 * f_norm2);
       out.residual = gap / scale;
+      if (params.progress)
+        params.progress (it, out.residual);
       if (gap <= params.tolerance * scale)
       {
         out.converged = true;

@@ -20,6 +20,7 @@
 
 #include <pcl_graph_denoise/core/graph.h>
 
+#include <functional>
 #include <string>
 
 namespace pcl_graph_denoise {
@@ -52,6 +53,9 @@ struct TikhonovParams
   double tolerance = 1e-5;
   int max_iterations = 1000;  ///< CG iteration cap; valid >= 1
   int num_threads = 0;        ///< 0 = all hardware threads; valid >= 0
+  /** Called every 10 CG iterations with the iterations done and the relative residual
+   *  then, from the calling thread; empty (default) = silent. For progress reports. */
+  std::function<void (int iterations, double residual)> progress;
 };
 
 /** \brief Solves (I + 2 gamma L) x = f for the three columns of f.
@@ -78,6 +82,10 @@ struct TotalVariationParams
   double tolerance = 1e-3;
   int max_iterations = 500;  ///< iteration cap; valid >= 1
   int num_threads = 0;       ///< 0 = all hardware threads; valid >= 0
+  /** Called at every duality-gap check (every 10 iterations and at the cap) with the
+   *  iterations done and the relative gap then, from the calling thread; empty (default)
+   *  = silent. For progress reports. */
+  std::function<void (int iterations, double residual)> progress;
 };
 
 /** \brief Total-variation denoising by the accelerated primal-dual algorithm of

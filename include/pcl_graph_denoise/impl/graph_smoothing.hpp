@@ -71,6 +71,22 @@ GraphSmoothing<PointT>::invalidParameters () const
 }
 
 template <typename PointT>
+std::function<void (int, double)>
+GraphSmoothing<PointT>::solverProgress () const
+{
+  if (!progress_)
+    return {};
+  return [this] (int iterations, double residual) {
+    SmoothingProgress event;
+    event.stage = SmoothingProgress::SOLVING;
+    event.pass = current_pass_;
+    event.iterations = iterations;
+    event.residual = residual;
+    progress_ (event);
+  };
+}
+
+template <typename PointT>
 void
 GraphSmoothing<PointT>::applyFilter (PointCloud &output)
 {
@@ -156,7 +172,17 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
   core::Signal3 position = start;
   for (int pass = 0; pass < graph_iterations_; ++pass)
   {
+    current_pass_ = pass;
     const core::PointGraph graph = build_graph (position.template cast<float> ());
+    if (progress_)
+    {
+      SmoothingProgress event;
+      event.stage = SmoothingProgress::GRAPH_BUILT;
+      event.pass = pass;
+      event.vertices = graph.numVertices ();
+      event.edges = graph.numEdges ();
+      progress_ (event);
+    }
     core::Signal3 f (static_cast<Eigen::Index> (count), 3);
     for (std::size_t v = 0; v < count; ++v)
       f.row (v) = position.row (graph.order[v]);

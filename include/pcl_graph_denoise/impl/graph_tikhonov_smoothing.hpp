@@ -19,6 +19,7 @@ GraphTikhonovSmoothing<PointT>::smooth (const core::PointGraph &graph, const cor
   params.tolerance = this->tolerance_;
   params.max_iterations = this->max_iterations_;
   params.num_threads = this->num_threads_;
+  params.progress = this->solverProgress ();
   return core::solveTikhonov (graph, f, gamma, params, &report);
 }
 
