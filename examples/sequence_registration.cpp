@@ -22,6 +22,7 @@
 #include <pcl_graph_denoise/graph_sequence_smoothing.h>
 
 #include <pcl/common/common.h>
+#include <pcl/common/time.h>
 #include <pcl/common/transforms.h>
 #include <pcl/filters/filter.h>
 #include <pcl/filters/voxel_grid.h>
@@ -31,7 +32,7 @@
 #include <pcl/registration/icp.h>
 
 #include <algorithm>
-#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -74,12 +75,6 @@ medianGap (const Cloud::ConstPtr &from, const Cloud::ConstPtr &to)
   return gap[gap.size () / 2];
 }
 
-double
-secondsSince (std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
-}
-
 } // namespace
 
 int
@@ -110,7 +105,7 @@ main (int argc, char **argv)
   }
 
   // 1. Registration, on copies downsampled to 1/200 and 1/800 of the first frame's extent.
-  auto start = std::chrono::steady_clock::now ();
+  pcl::StopWatch watch;
   Eigen::Vector4f lo, hi;
   {
     Cloud finite;
@@ -159,10 +154,10 @@ main (int argc, char **argv)
                  fitness, before, after);
     ok = ok && converged && after < before;
   }
-  std::printf ("registration: %.2f s (voxel leaf %.3g)\n", secondsSince (start), leaf);
+  std::printf ("registration: %.2f s (voxel leaf %.3g)\n", watch.getTimeSeconds (), leaf);
 
   // 2. Denoising in frame 0's coordinates, frames streamed through the sequence filter.
-  start = std::chrono::steady_clock::now ();
+  watch.reset ();
   pcl_graph_denoise::GraphSequenceSmoothing<PointT> sequence;
   std::vector<Cloud::Ptr> denoised;
   for (std::size_t t = 0; t < frames.size (); ++t)
@@ -180,7 +175,7 @@ main (int argc, char **argv)
     return 1;
   denoised.insert (denoised.end (), rest.begin (), rest.end ());
   std::printf ("denoising: %.2f s for %zu frames (GraphSequenceSmoothing, Tikhonov, k2 = %d, window %d)\n",
-               secondsSince (start), frames.size (), sequence.getKTemporal (), sequence.getTemporalWindow ());
+               watch.getTimeSeconds (), frames.size (), sequence.getKTemporal (), sequence.getTemporalWindow ());
 
   // 3. Back into each frame's own coordinates.
   for (std::size_t t = 0; t < frames.size (); ++t)
