@@ -247,7 +247,13 @@ size is the missing third length; a rule that stays unit-free needs a length mea
 surface (its feature size, e.g. from the curvature of the quadric fits), which is the open work.
 Both inputs of the rule also blur at high noise: the k-NN spacing grows with the noise (block,
 50,000 points: 0.0178 at σ = 0.5%, 0.0283 at 3%, the distance to neighbours inside a thick
-shell) and σ̂ falls short of σ (0.0225 for 0.03).
+shell) and σ̂ falls short of σ (0.0225 for 0.03). The rest of the set (run afterwards with
+`calibrate_gamma --only casting,dragon,bun_zipper,sphere,cube`, as far as it got) shows what the
+third length must capture: the best multiple is ¼, the floor of the sweep, on the casting at
+10,000 and 20,000 points, ¼–0.7 on the dragon at 10,000, 0.5–1 on the bunny at 10,000 rising to
+2–4 at 50,000, and 8–16, the ceiling, on the sphere at every size (where the derived γ costs
+1.4–2.3× the best error). Detail the quadric cannot follow limits γ, density raises it, and a
+surface of constant curvature takes any γ: the rule needs a measure of the surface's detail.
 
 ## 6. Time-varying clouds
 
