@@ -123,6 +123,20 @@ progressPrinter (const StderrCapture &capture)
   };
 }
 
+/** Runs `work` (a smoother's filter(), push() or flush()) with stderr captured, PCL's
+ *  messages kept for after, and the smoother's progress written through at once; returns
+ *  the captured text. */
+template <typename Work>
+std::string
+runReporting (pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &smoother, Work &&work)
+{
+  StderrCapture capture;
+  smoother.setProgressCallback (progressPrinter (capture));
+  work ();
+  smoother.setProgressCallback ({});
+  return capture.release ();
+}
+
 /** Passes on what a filter printed (warnings) once it is done. */
 void
 forward (const std::string &captured)
@@ -291,14 +305,7 @@ smooth (const Options &options, std::size_t s, const XyzFields &xyz, pcl::PCLPoi
     throw Error (stepName (options, s) + ": no point with a finite x, y, z is left to smooth");
   filter.setInputCloud (input);
   Cloud output;
-  std::string captured;
-  {
-    StderrCapture capture;
-    filter.setProgressCallback (progressPrinter (capture));
-    filter.filter (output);
-    filter.setProgressCallback ({});
-    captured = capture.release ();
-  }
+  const std::string captured = runReporting (filter, [&] { filter.filter (output); });
   if (output.size () != input->size ())
   {
     const std::string why = mainMessage (captured);
@@ -406,15 +413,8 @@ smoothSequence (const Options &options, std::size_t s, const std::vector<XyzFiel
   for (std::size_t f = 0; f < files.size (); ++f)
   {
     Cloud::Ptr ready;
-    std::string captured;
     bool ok = false;
-    {
-      StderrCapture capture;
-      smoother->setProgressCallback (progressPrinter (capture));
-      ok = sequence.push (frames[f], ready);
-      smoother->setProgressCallback ({});
-      captured = capture.release ();
-    }
+    const std::string captured = runReporting (*smoother, [&] { ok = sequence.push (frames[f], ready); });
     if (!ok)
       throw failed (captured);
     forward (captured);
@@ -422,15 +422,8 @@ smoothSequence (const Options &options, std::size_t s, const std::vector<XyzFiel
       store (ready);
   }
   std::vector<Cloud::Ptr> rest;
-  std::string captured;
   bool ok = false;
-  {
-    StderrCapture capture;
-    smoother->setProgressCallback (progressPrinter (capture));
-    ok = sequence.flush (rest);
-    smoother->setProgressCallback ({});
-    captured = capture.release ();
-  }
+  const std::string captured = runReporting (*smoother, [&] { ok = sequence.flush (rest); });
   for (const auto &result : rest)
     store (result);
   if (!ok)
