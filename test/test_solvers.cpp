@@ -17,7 +17,10 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <random>
 #include <stdexcept>
 
@@ -313,4 +316,123 @@ TEST (DefaultGamma, IsUnitInvariantAndGrowsWithNoise)
   EXPECT_GT (defaultTikhonovGamma (a, 0.02), defaultTikhonovGamma (a, 0.01));
   EXPECT_GT (defaultTotalVariationGamma (a, 0.02), defaultTotalVariationGamma (a, 0.01));
   EXPECT_EQ (defaultTikhonovGamma (a, 0.0), 0.0);
+}
+
+// ---- The strength chosen by Stein's unbiased risk estimate ---------------------------
+
+namespace {
+
+/** Plain Tikhonov as a Denoiser (linear: the risk estimate is then exact in expectation). */
+Signal3
+tikhonovDenoiser (const PointGraph &g, const Signal3 &f, double gamma)
+{
+  return solveTikhonov (g, f, gamma);
+}
+
+/** Mean squared distance of the vertices to the unit sphere. */
+double
+sphereError (const Signal3 &x)
+{
+  double sum = 0.0;
+  for (Eigen::Index v = 0; v < x.rows (); ++v)
+    sum += std::pow (x.row (v).norm () - 1.0, 2);
+  return sum / double (x.rows ());
+}
+
+} // namespace
+
+TEST (RiskSelection, LandsNearTheTrueBestOfTheMultiples)
+{
+  for (double noise : {0.005, 0.02})
+  {
+    const PointMatrix sphere = toMatrix (synthetic::noisySphere (10000, 1.0, noise, 61));
+    const PointGraph g = buildKnnGraph (sphere);
+    const Signal3 f = vertexSignal (g, sphere);
+    const double gamma = defaultTikhonovGamma (g, noise);
+    RiskSelectionParams params;
+    const double chosen = selectGammaByRisk (g, f, noise, gamma, tikhonovDenoiser, params);
+    double best = std::numeric_limits<double>::infinity (), best_m = 0.0, worst = 0.0;
+    for (double m : params.multiples)
+    {
+      const double e = sphereError (tikhonovDenoiser (g, f, m * gamma));
+      if (e < best)
+        best = e, best_m = m;
+      worst = std::max (worst, e);
+    }
+    ASSERT_GT (worst, 2.0 * best);  // the choice matters: a wrong one would fail below
+    const double e = sphereError (tikhonovDenoiser (g, f, chosen));
+    std::printf ("noise %g: chosen %.3g x the rule (error %.4g), best of the multiples %g x (%.4g)\n",
+                 noise, chosen / gamma, e, best_m, best);
+    EXPECT_LT (e, 1.1 * best) << noise;
+    // Deterministic, and unchanged by the unit of the cloud.
+    EXPECT_EQ (selectGammaByRisk (g, f, noise, gamma, tikhonovDenoiser, params), chosen);
+    const PointMatrix mm = sphere * 1000.0f;
+    const PointGraph h = buildKnnGraph (mm);
+    EXPECT_NEAR (selectGammaByRisk (h, vertexSignal (h, mm), 1000.0 * noise,
+                                    defaultTikhonovGamma (h, 1000.0 * noise), tikhonovDenoiser, params) /
+                     defaultTikhonovGamma (h, 1000.0 * noise),
+                 chosen / gamma, 1e-6);
+  }
+}
+
+TEST (RiskSelection, BlocksOfALargeGraphChooseLikeTheWholeGraph)
+{
+  const double noise = 0.01;
+  const PointMatrix sphere = toMatrix (synthetic::noisySphere (40000, 1.0, noise, 62));
+  const PointGraph g = buildKnnGraph (sphere);
+  const Signal3 f = vertexSignal (g, sphere);
+  const double gamma = defaultTikhonovGamma (g, noise);
+  std::size_t largest = 0;
+  RiskSelectionParams whole, blocks;
+  blocks.sample_size = 12000;  // four blocks of 3,000 consecutive vertices
+  const auto counting = [&] (const PointGraph &graph, const Signal3 &s, double gm) {
+    largest = std::max (largest, graph.numVertices ());
+    return tikhonovDenoiser (graph, s, gm);
+  };
+  const double all = selectGammaByRisk (g, f, noise, gamma, counting, whole);
+  EXPECT_EQ (largest, g.numVertices ());
+  largest = 0;
+  const double sampled = selectGammaByRisk (g, f, noise, gamma, counting, blocks);
+  EXPECT_EQ (largest, 3000u);
+  std::printf ("whole graph %.3g x the rule, four blocks %.3g x\n", all / gamma, sampled / gamma);
+  EXPECT_LE (std::abs (std::log2 (sampled / all)), 0.51);  // at most one step of sqrt 2
+}
+
+TEST (RiskSelection, DegenerateInputsKeepGammaAndInvalidSettingsThrow)
+{
+  const PointMatrix sphere = toMatrix (synthetic::noisySphere (500, 1.0, 0.01, 63));
+  const PointGraph g = buildKnnGraph (sphere);
+  const Signal3 f = vertexSignal (g, sphere);
+  int calls = 0;
+  const Denoiser counting = [&] (const PointGraph &graph, const Signal3 &s, double gm) {
+    ++calls;
+    return tikhonovDenoiser (graph, s, gm);
+  };
+  EXPECT_EQ (selectGammaByRisk (g, f, 0.0, 0.5, counting), 0.5);  // no noise
+  EXPECT_EQ (selectGammaByRisk (g, f, 0.01, 0.0, counting), 0.0);  // no smoothing
+  EXPECT_EQ (selectGammaByRisk (g, f, std::nan (""), 0.5, counting), 0.5);
+  const PointGraph single = buildKnnGraph (PointMatrix::Zero (1, 3));
+  EXPECT_EQ (selectGammaByRisk (single, Signal3::Zero (1, 3), 0.01, 0.5, counting), 0.5);  // no edges
+  EXPECT_EQ (calls, 0);
+  EXPECT_THROW (selectGammaByRisk (g, Signal3::Zero (3, 3), 0.01, 0.5, counting), std::invalid_argument);
+  EXPECT_THROW (selectGammaByRisk (g, f, 0.01, 0.5, Denoiser ()), std::invalid_argument);
+  RiskSelectionParams bad;
+  bad.multiples = {};
+  EXPECT_THROW (selectGammaByRisk (g, f, 0.01, 0.5, counting, bad), std::invalid_argument);
+  bad.multiples = {1.0, -2.0};
+  EXPECT_THROW (selectGammaByRisk (g, f, 0.01, 0.5, counting, bad), std::invalid_argument);
+  bad.multiples = {1.0};
+  bad.sample_size = 0;
+  EXPECT_THROW (selectGammaByRisk (g, f, 0.01, 0.5, counting, bad), std::invalid_argument);
+  bad.sample_size = 100;
+  bad.num_threads = -1;
+  EXPECT_THROW (selectGammaByRisk (g, f, 0.01, 0.5, counting, bad), std::invalid_argument);
+  // A single multiple: it and its two neighbours are tried (2 runs each), plus the normals.
+  RiskSelectionParams one;
+  one.multiples = {1.0};
+  calls = 0;
+  const double chosen = selectGammaByRisk (g, f, 0.01, 0.5, counting, one);
+  EXPECT_EQ (calls, 1 + 3 * 2);
+  EXPECT_TRUE (chosen == 0.5 || std::abs (chosen / 0.5 - std::sqrt (2.0)) < 1e-9 ||
+               std::abs (chosen / 0.5 - 1.0 / std::sqrt (2.0)) < 1e-9);
 }

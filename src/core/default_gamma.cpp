@@ -5,8 +5,14 @@
 #include <pcl_graph_denoise/core/operators.h>
 #include <pcl_graph_denoise/core/solvers.h>
 
+#include <pcl_graph_denoise/core/normals.h>
+
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
+#include <random>
+#include <stdexcept>
 
 namespace pcl_graph_denoise {
 namespace core {
@@ -27,7 +33,136 @@ meanOf (const std::vector<double> &v)
   return v.empty () ? 0.0 : std::accumulate (v.begin (), v.end (), 0.0) / double (v.size ());
 }
 
+/** A block of consecutive vertices [first, last) as a graph of its own (the edges with
+ *  both ends inside), its positions, and which of its vertices kept all their
+ *  neighbours and have neighbours that did (the ones the risk is summed over). */
+struct Block
+{
+  PointGraph graph;
+  Signal3 f;
+  std::vector<char> interior;
+};
+
+Block
+makeBlock (const PointGraph &graph, const Signal3 &f, std::size_t first, std::size_t last)
+{
+  Block block;
+  const std::size_t size = last - first;
+  block.graph.sigma = graph.sigma;
+  block.graph.spacing = graph.spacing;
+  block.graph.order.resize (size);
+  block.graph.row_ptr.reserve (size + 1);
+  block.graph.row_ptr.push_back (0);
+  std::vector<char> complete (size, 1);
+  for (std::size_t v = first; v < last; ++v)
+  {
+    block.graph.order[v - first] = static_cast<VertexIndex> (v - first);
+    for (std::uint64_t e = graph.row_ptr[v]; e < graph.row_ptr[v + 1]; ++e)
+    {
+      const std::size_t j = graph.col[e];
+      if (j < first || j >= last)
+      {
+        complete[v - first] = 0;
+        continue;
+      }
+      block.graph.col.push_back (static_cast<VertexIndex> (j - first));
+      block.graph.weight.push_back (graph.weight[e]);
+    }
+    block.graph.row_ptr.push_back (block.graph.col.size ());
+  }
+  block.f = f.middleRows (static_cast<Eigen::Index> (first), static_cast<Eigen::Index> (size));
+  block.interior = complete;
+  for (std::size_t v = 0; v < size; ++v)
+    for (std::uint64_t e = block.graph.row_ptr[v]; e < block.graph.row_ptr[v + 1] && block.interior[v]; ++e)
+      block.interior[v] = complete[block.graph.col[e]];
+  return block;
+}
+
 } // namespace
+
+double
+selectGammaByRisk (const PointGraph &graph, const Signal3 &f, double noise, double gamma,
+                   const Denoiser &denoise, const RiskSelectionParams &params)
+{
+  const std::size_t n = graph.numVertices ();
+  if (static_cast<std::size_t> (f.rows ()) != n)
+    throw std::invalid_argument ("selectGammaByRisk: signal of the wrong size");
+  if (params.multiples.empty () || params.sample_size == 0 || params.num_threads < 0 || !denoise)
+    throw std::invalid_argument ("selectGammaByRisk: no multiples, no sample or no denoiser");
+  for (double m : params.multiples)
+    if (!(m > 0.0) || !std::isfinite (m))
+      throw std::invalid_argument ("selectGammaByRisk: multiples must be finite and positive");
+  if (!(gamma > 0.0) || !std::isfinite (gamma) || !(noise > 0.0) || !std::isfinite (noise) ||
+      graph.numEntries () == 0)
+    return gamma;
+
+  // Four blocks of consecutive vertices, spread over the (Morton) order, or the whole graph.
+  std::vector<Block> blocks;
+  if (n <= params.sample_size)
+    blocks.push_back (makeBlock (graph, f, 0, n));
+  else
+  {
+    const std::size_t size = std::max<std::size_t> (1, params.sample_size / 4);
+    for (std::size_t b = 0; b < 4; ++b)
+    {
+      const std::size_t centre = (2 * b + 1) * n / 8;
+      const std::size_t first = centre - std::min (centre, size / 2);
+      blocks.push_back (makeBlock (graph, f, first, std::min (n, first + size)));
+    }
+  }
+
+  // The probe: a step of one noise level along the normals of the points denoised at
+  // the given gamma.
+  std::mt19937_64 rng (params.seed);
+  std::normal_distribution<double> gaussian;
+  std::vector<Signal3> normals, probe, moved;
+  for (const Block &block : blocks)
+  {
+    normals.push_back (
+        estimateNormals (block.graph, denoise (block.graph, block.f, gamma), params.num_threads));
+    Signal3 z (block.f.rows (), 3);
+    for (Eigen::Index v = 0; v < z.rows (); ++v)
+      z.row (v) = gaussian (rng) * normals.back ().row (v);
+    moved.push_back (block.f + noise * z);
+    probe.push_back (std::move (z));
+  }
+
+  const auto risk = [&] (double multiple) {
+    double sum = 0.0;
+    for (std::size_t b = 0; b < blocks.size (); ++b)
+    {
+      const Block &block = blocks[b];
+      const Signal3 x = denoise (block.graph, block.f, multiple * gamma);
+      const Signal3 x_moved = denoise (block.graph, moved[b], multiple * gamma);
+      for (Eigen::Index v = 0; v < x.rows (); ++v)
+        if (block.interior[static_cast<std::size_t> (v)])
+        {
+          const double residual = (x.row (v) - block.f.row (v)).dot (normals[b].row (v));
+          // 2 noise^2 times the divergence's probe estimate (z . (x_moved - x) / noise).
+          sum += residual * residual + 2.0 * noise * (x_moved.row (v) - x.row (v)).dot (probe[b].row (v));
+        }
+    }
+    return sum;
+  };
+
+  std::vector<std::pair<double, double>> tried;  // (multiple, risk)
+  for (double m : params.multiples)
+    tried.emplace_back (m, risk (m));
+  const auto best = [&] {
+    return std::min_element (tried.begin (), tried.end (),
+                             [] (const auto &a, const auto &b) { return a.second < b.second; })->first;
+  };
+  const double coarse = best ();
+  for (double m : {coarse / std::sqrt (2.0), coarse * std::sqrt (2.0)})
+  {
+    const bool seen = std::any_of (tried.begin (), tried.end (), [&] (const auto &t) {
+      return std::abs (t.first / m - 1.0) < 1e-6;
+    });
+    if (!seen)
+      tried.emplace_back (m, risk (m));
+  }
+  return best () * gamma;
+}
 
 double
 defaultTikhonovGamma (const PointGraph &graph, double noise)

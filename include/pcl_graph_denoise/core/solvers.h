@@ -22,6 +22,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace pcl_graph_denoise {
 namespace core {
@@ -118,6 +119,40 @@ defaultTikhonovGamma (const PointGraph &graph, double noise);
  *  Calibrated as defaultTikhonovGamma. 0 when the graph has no edges or no noise. */
 double
 defaultTotalVariationGamma (const PointGraph &graph, double noise);
+
+/** \brief A whole denoising pass at a strength gamma: the positions of the points of
+ *  `graph` (one row per vertex) denoised, as the filters do (solve, refinements). */
+using Denoiser = std::function<Signal3 (const PointGraph &graph, const Signal3 &f, double gamma)>;
+
+/** \brief Settings of selectGammaByRisk. */
+struct RiskSelectionParams
+{
+  /** Multiples of the given gamma tried first (ascending); the best is then refined by
+   *  one step of sqrt 2 on each side. */
+  std::vector<double> multiples = {0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0};
+  /** At most this many vertices take part: larger graphs are sampled in four blocks of
+   *  consecutive (hence spatially compact) vertices, which keep the density. */
+  std::size_t sample_size = 50000;
+  std::uint64_t seed = 1;  ///< of the random probe (results are deterministic)
+  int num_threads = 0;     ///< for the normals; 0 = all hardware threads
+};
+
+/** \brief Chooses the denoising strength by Stein's unbiased risk estimate: among
+ *  gamma x multiples, the one whose expected squared error along the surface normal,
+ *
+ *    R(gamma) = sum_i (n_i . (x_i - f_i))^2 - N noise^2 + 2 noise^2 div_n(gamma),
+ *
+ *  is lowest, where x = denoise(f, gamma), n_i the normals of the points denoised at the
+ *  given gamma and div_n the divergence of the denoiser along those normals, estimated
+ *  by one random probe (f + noise z_i n_i, z standard normal: a step of the noise's own
+ *  size also catches the jumps of the robust fits that a small step misses). Needs no
+ *  ground truth, only the noise level (Gaussian noise of that standard deviation per
+ *  axis). Sums run over the vertices whose neighbours all take part. Returns `gamma`
+ *  itself when it, the noise or the graph is empty.
+ *  \throws std::invalid_argument when f has the wrong size or the parameters are invalid. */
+double
+selectGammaByRisk (const PointGraph &graph, const Signal3 &f, double noise, double gamma,
+                   const Denoiser &denoise, const RiskSelectionParams &params = {});
 
 } // namespace core
 } // namespace pcl_graph_denoise
