@@ -383,6 +383,101 @@ TEST (SmoothingQuality, QuadricSurfaceBeatsThePlaneOnCurvedShapes)
   }
 }
 
+namespace {
+
+/** A corrugated square: z = a sin(w x) sin(w y) on [-1, 1]^2, detail a few graph rings wide. */
+constexpr double kBumpAmplitude = 0.03, kBumpFrequency = 2.0 * M_PI / 0.15;
+
+double
+bumpHeight (double x, double y)
+{
+  return kBumpAmplitude * std::sin (kBumpFrequency * x) * std::sin (kBumpFrequency * y);
+}
+
+/** Distance to the corrugated square, to first order: the height difference over the slope. */
+double
+distanceToBumps (const Eigen::Vector3d &p)
+{
+  const double gx = kBumpAmplitude * kBumpFrequency * std::cos (kBumpFrequency * p.x ()) *
+                    std::sin (kBumpFrequency * p.y ());
+  const double gy = kBumpAmplitude * kBumpFrequency * std::sin (kBumpFrequency * p.x ()) *
+                    std::cos (kBumpFrequency * p.y ());
+  return std::abs (p.z () - bumpHeight (p.x (), p.y ())) / std::sqrt (1.0 + gx * gx + gy * gy);
+}
+
+synthetic::Cloud
+noisyBumps (std::size_t n, double noise, std::uint64_t seed)
+{
+  std::mt19937_64 rng (seed);
+  std::uniform_real_distribution<double> u (-1.0, 1.0);
+  std::normal_distribution<double> g (0.0, noise);
+  synthetic::Cloud cloud;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double x = u (rng), y = u (rng);
+    cloud.push_back (pcl::PointXYZ (float (x + g (rng)), float (y + g (rng)),
+                                    float (bumpHeight (x, y) + g (rng))));
+  }
+  return cloud;
+}
+
+} // namespace
+
+TEST (SmoothingQuality, RiskEstimateFollowsTheSurfacesDetail)
+{
+  // A smooth surface takes far more smoothing than the rule gives, a detailed one less:
+  // the risk estimate goes the right way on both, never worse than the rule, and near
+  // the best of a sweep it cannot see (it estimates the squared error along the normals;
+  // the check measures the mean distance to the surface).
+  struct Shape
+  {
+    const char *name;
+    synthetic::Cloud cloud;
+    Distance distance;
+    bool more;           // the best gamma is above the rule's
+    double within_best;  // the risk estimate's error at most this times the sweep's best
+  };
+  const std::vector<Shape> shapes = {
+      {"sphere", synthetic::noisySphere (10000, 1.0, 0.01, 36), kToSphere, true, 1.1},
+      {"corrugated square", noisyBumps (20000, 0.005, 37), distanceToBumps, false, 1.3}};
+  for (int which = 0; which < 2; ++which)
+    for (const auto &shape : shapes)
+    {
+      auto cloud = std::make_shared<synthetic::Cloud> (shape.cloud);
+      std::unique_ptr<GraphSmoothing<pcl::PointXYZ>> filter;
+      if (which == 0)
+        filter.reset (new GraphTikhonovSmoothing<pcl::PointXYZ>);
+      else
+        filter.reset (new GraphTVSmoothing<pcl::PointXYZ>);
+      EXPECT_EQ (filter->getGammaSelection (), GammaSelection::RULE);
+      const double rule = meanDistance (*run (*filter, cloud), shape.distance);
+      const double rule_gamma = filter->getUsedGamma ();
+      double best = std::numeric_limits<double>::infinity ();
+      for (double m : {0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0})
+      {
+        filter->setGamma (m * rule_gamma);
+        best = std::min (best, meanDistance (*run (*filter, cloud), shape.distance));
+      }
+      filter->setAutomaticGamma ();
+      filter->setGammaSelection (GammaSelection::RISK_ESTIMATE);
+      const double risk = meanDistance (*run (*filter, cloud), shape.distance);
+      const double multiple = filter->getUsedGamma () / rule_gamma;
+      std::printf ("%s, %s: rule %.5f, best of the sweep %.5f, risk estimate %.5f (%.3g x the "
+                   "rule's gamma)\n", shape.name, which == 0 ? "Tikhonov" : "TV", rule, best, risk,
+                   multiple);
+      EXPECT_LT (risk, shape.within_best * best) << shape.name;
+      EXPECT_LE (risk, 1.02 * rule) << shape.name;
+      if (shape.more)
+        EXPECT_GE (multiple, 4.0) << shape.name;
+      else
+        EXPECT_LE (multiple, 1.0) << shape.name;
+      // An explicit gamma is used as it is.
+      filter->setGamma (0.5 * rule_gamma);
+      run (*filter, cloud);
+      EXPECT_EQ (filter->getUsedGamma (), 0.5 * rule_gamma);
+    }
+}
+
 TEST (SmoothingQuality, PaperFilterIsTheExactTikhonovSolve)
 {
   auto sphere = std::make_shared<synthetic::Cloud> (synthetic::noisySphere (3000, 1.0, 0.02, 53));

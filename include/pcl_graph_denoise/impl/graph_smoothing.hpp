@@ -204,30 +204,53 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
       if (pass == 0)
         estimated_noise_ = noise;
     }
-    if (automatic_gamma_)
-      used_gamma_ = automaticGamma (graph, noise) * (quadric ? detail::kQuadricGammaScale : 1.0);
-    // Each solve warns on its own when it stops before its tolerance; the report
-    // sums the iterations of the pass and keeps the worst residual.
-    report_ = core::SolverReport{};
-    report_.converged = true;
-    const auto solve = [&] (const core::Signal3 &signal) {
-      core::SolverReport report;
-      core::Signal3 x = smooth (graph, signal, used_gamma_, report);
-      if (!report.converged)
-        PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] The solver stopped after %d iterations "
-                  "at a residual of %g, above its tolerance; its last iterate is used.\n",
-                  name.c_str (), report.iterations, report.residual);
-      report_.iterations += report.iterations;
-      report_.residual = std::max (report_.residual, report.residual);
-      report_.converged = report_.converged && report.converged;
+    // One denoising at a strength: the solve, twicing and the local surface. The report
+    // keeps the solves of the pass's own run; the selection's runs are not reported.
+    const auto denoise = [&] (const core::PointGraph &g, const core::Signal3 &signal, double gamma,
+                              bool record) {
+      const auto solve = [&] (const core::Signal3 &s) {
+        core::SolverReport report;
+        core::Signal3 solved = smooth (g, s, gamma, report);
+        if (!record)
+          return solved;
+        // Each solve warns on its own when it stops before its tolerance; the report
+        // sums the iterations of the pass and keeps the worst residual.
+        if (!report.converged)
+          PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] The solver stopped after %d iterations "
+                    "at a residual of %g, above its tolerance; its last iterate is used.\n",
+                    name.c_str (), report.iterations, report.residual);
+        report_.iterations += report.iterations;
+        report_.residual = std::max (report_.residual, report.residual);
+        report_.converged = report_.converged && report.converged;
+        return solved;
+      };
+      const core::Signal3 smoothed = solve (signal);
+      core::Signal3 x =
+          shrinkage_correction_ ? core::Signal3 (2.0 * smoothed - solve (smoothed)) : smoothed;
+      if (quadric)
+        x = core::quadricDisplacement (g, signal, x, noise, num_threads_);
+      else if (normal_displacement_)
+        x = core::normalDisplacement (signal, x, core::estimateNormals (g, smoothed, num_threads_));
       return x;
     };
-    const core::Signal3 smoothed = solve (f);
-    core::Signal3 x = shrinkage_correction_ ? core::Signal3 (2.0 * smoothed - solve (smoothed)) : smoothed;
-    if (quadric)
-      x = core::quadricDisplacement (graph, f, x, noise, num_threads_);
-    else if (normal_displacement_)
-      x = core::normalDisplacement (f, x, core::estimateNormals (graph, smoothed, num_threads_));
+    if (automatic_gamma_)
+    {
+      used_gamma_ = automaticGamma (graph, noise) * (quadric ? detail::kQuadricGammaScale : 1.0);
+      if (gamma_selection_ == GammaSelection::RISK_ESTIMATE)
+      {
+        core::RiskSelectionParams params;
+        params.num_threads = num_threads_;
+        used_gamma_ = core::selectGammaByRisk (
+            graph, f, noise, used_gamma_,
+            [&] (const core::PointGraph &g, const core::Signal3 &s, double gamma) {
+              return denoise (g, s, gamma, false);
+            },
+            params);
+      }
+    }
+    report_ = core::SolverReport{};
+    report_.converged = true;
+    const core::Signal3 x = denoise (graph, f, used_gamma_, true);
     for (std::size_t v = 0; v < count; ++v)
       position.row (graph.order[v]) = x.row (v);
   }
