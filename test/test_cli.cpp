@@ -1064,6 +1064,42 @@ TEST (Cli, TemporalStepWritesEveryFrameToTheFolderAsTheLibraryDoes)
   }
 }
 
+TEST (Cli, GammaRiskChoosesAsTheLibraryDoes)
+{
+  const fs::path dir = testFolder ();
+  const PCLPointCloud2 input = sphereFrames ()[0];
+  savePcd (dir / "in.pcd", input);
+  pcl::PointCloud<pcl::PointXYZ>::Ptr xyz (new pcl::PointCloud<pcl::PointXYZ>);
+  pcl::fromPCLPointCloud2 (input, *xyz);
+  pcl_graph_denoise::GraphTikhonovSmoothing<pcl::PointXYZ> filter;
+  filter.setGammaSelection (pcl_graph_denoise::GammaSelection::RISK_ESTIMATE);
+  filter.setInputCloud (xyz);
+  pcl::PointCloud<pcl::PointXYZ> expected;
+  filter.filter (expected);
+  for (const std::vector<std::string> &chain :
+       {std::vector<std::string>{"-tikhonov", "-gamma", "risk"}, {"-tikhonov", "gamma=risk"}})
+  {
+    std::vector<std::string> args = {"in.pcd", "out.pcd"};
+    args.insert (args.end (), chain.begin (), chain.end ());
+    const ToolRun run = runTool (dir, args);
+    ASSERT_EQ (run.code, 0) << describe (args, run);
+    EXPECT_NE (run.err.find ("lowest estimated risk"), std::string::npos) << run.err;
+    const PCLPointCloud2 output = load (dir / "out.pcd");
+    ASSERT_EQ (size (output), expected.size ());
+    for (std::size_t i = 0; i < expected.size (); ++i)
+      ASSERT_EQ (coordinate (output, i, "y"), expected[i].y) << "point " << i;
+  }
+  // The rule's gamma is another: the choice made the difference.
+  filter.setGammaSelection (pcl_graph_denoise::GammaSelection::RULE);
+  const double chosen = filter.getUsedGamma ();
+  filter.filter (expected);
+  EXPECT_NE (filter.getUsedGamma (), chosen);
+  const ToolRun run = runTool (dir, {"in.pcd", "out.pcd", "-tikhonov", "-gamma", "auto"});
+  ASSERT_EQ (run.code, 0);
+  EXPECT_NE (run.err.find ("(derived, estimated noise"), std::string::npos) << run.err;
+  EXPECT_EQ (runTool (dir, {"in.pcd", "out.pcd", "-tikhonov", "-gamma", "risky"}).code, 2);
+}
+
 TEST (Cli, SmoothingReportsEachPassGraphAsItIsBuilt)
 {
   const fs::path dir = testFolder ();

@@ -47,7 +47,7 @@ enum class ValueType
   THREADS,       ///< integer in [0, max_threads]
   COUNT,         ///< integer >= 0
   SWITCH,        ///< 0 or 1 (also true/false, on/off, yes/no)
-  GAMMA,         ///< "auto" or a finite real >= 0
+  GAMMA,         ///< "auto", "risk" or a finite real >= 0
   SURFACE,       ///< plane or quadric
   SOLVER,        ///< cg or cholmod
   SMOOTHER,      ///< tikhonov or tv
@@ -218,7 +218,7 @@ parseValue (const ParameterSpec &spec, const std::string &text)
     return value;
   }
   case ValueType::GAMMA:
-    if (text == "auto")
+    if (text == "auto" || text == "risk")
       return value;
     [[fallthrough]];
   case ValueType::NON_NEGATIVE:
@@ -606,8 +606,9 @@ usage (const std::string &program)
     << "  -k N                    neighbours per point in the graph; >= 1 (default: " << k << ")\n"
     << "  -sigma X                theta of the weights; >= 0\n"
     << "                          (default: " << sigma << ")\n"
-    << "  -gamma X|auto           strength, >= 0, 0 = identity; -tikhonov: unitless, -tv: a\n"
-    << "                          length in cloud units\n"
+    << "  -gamma X|auto|risk      strength, >= 0, 0 = identity; -tikhonov: unitless, -tv: a\n"
+    << "                          length in cloud units; auto = the rule, risk = the rule's\n"
+    << "                          gamma x 1/4 .. 16 with the lowest estimated error (slower)\n"
     << "                          (default: " << gamma << ")\n"
     << "  -graph_iterations N     passes, each on a graph rebuilt from the previous one; 1 to "
        << pcl_graph_denoise::kMaxGraphIterations << "\n"

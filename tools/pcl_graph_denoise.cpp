@@ -178,8 +178,12 @@ configure (pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &filter, const Step 
       filter.setSigma (v.number);
     else if (name == "gamma")
     {
-      if (v.text == "auto")
+      if (v.text == "auto" || v.text == "risk")
+      {
         filter.setAutomaticGamma ();
+        filter.setGammaSelection (v.text == "risk" ? pcl_graph_denoise::GammaSelection::RISK_ESTIMATE
+                                                   : pcl_graph_denoise::GammaSelection::RULE);
+      }
       else
         filter.setGamma (v.number);
     }
@@ -334,7 +338,9 @@ smooth (const Options &options, std::size_t s, const XyzFields &xyz, pcl::PCLPoi
   value ("%g", filter.getUsedGamma ());
   if (filter.getAutomaticGamma ())
   {
-    info (" (derived, estimated noise ");
+    info (filter.getGammaSelection () == pcl_graph_denoise::GammaSelection::RISK_ESTIMATE
+              ? " (lowest estimated risk, estimated noise "
+              : " (derived, estimated noise ");
     value ("%g", filter.getEstimatedNoise ());
     info ("%s)", filter.getGraphIterations () > 1 ? " in the first pass" : "");
   }
