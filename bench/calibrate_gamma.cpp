@@ -11,14 +11,18 @@
  * distance (squared, both ways) for the meshes, the mean distance to the surface for the
  * sphere and the cube.
  *
- *   calibrate_gamma [--data DIR] [--only NAME,NAME]   (--only: the shapes whose names contain one)
+ *   calibrate_gamma [--data DIR] [--only NAME,NAME] [--sizes N,N]
+ *
+ * --only: the shapes whose names contain one of the names; --sizes: of 10000, 20000, 50000
+ * (the seeds stay those of the full run).
  *
  * For every cloud, both filters run at multiples m (1/4 to 16, steps of sqrt 2) of the
  * current default gamma (a "raw" line per cloud and filter gives the errors of the
  * sweep); the best m is fitted as log m = a + b log r with r = estimated noise / spacing
  * (the quantity the rules scale with), and the fitted rule is run to report, over the
  * set, the geometric mean of its error over the best of the sweep (1 = always the best)
- * next to the current rule's.
+ * next to the current rule's and to GammaSelection::RISK_ESTIMATE's (its chosen multiple
+ * and error over the best in each cloud's line).
  */
 #include <pcl_graph_denoise/graph_tikhonov_smoothing.h>
 #include <pcl_graph_denoise/graph_tv_smoothing.h>
@@ -44,6 +48,7 @@ struct Sample
   double best = 0.0, best_m = 0.0;
   double gamma = 0.0;             // the current default gamma
   double noise = 0.0, spacing = 0.0;  // estimated noise, spacing (sigma * sqrt 2)
+  double risk_error = 0.0, risk_m = 0.0;  // GammaSelection::RISK_ESTIMATE: error, multiple
 };
 
 // 1/4 to 16 in steps of sqrt 2; the default (1) is kMultiples[kDefault].
@@ -73,6 +78,11 @@ sweep (const Cloud::Ptr &cloud, const std::function<double (const Cloud &)> &err
     if (s.error.back () < s.best)
       s.best = s.error.back (), s.best_m = m;
   }
+  filter.setAutomaticGamma ();
+  filter.setGammaSelection (GammaSelection::RISK_ESTIMATE);
+  filter.filter (out);
+  s.risk_error = error (out);
+  s.risk_m = filter.getUsedGamma () / s.gamma;
   return s;
 }
 
@@ -99,21 +109,24 @@ main (int argc, char **argv)
   std::setvbuf (stdout, nullptr, _IOLBF, 0);
   std::string data = PGD_SHARED_DATA;
   std::string only;  // comma-separated substrings of the shape names to run
+  std::string sizes = ",10000,20000,50000,";
   for (int a = 1; a + 1 < argc; a += 2)
   {
     if (!std::strcmp (argv[a], "--data"))
       data = argv[a + 1];
     else if (!std::strcmp (argv[a], "--only"))
       only = std::string (",") + argv[a + 1] + ",";
+    else if (!std::strcmp (argv[a], "--sizes"))
+      sizes = std::string (",") + argv[a + 1] + ",";
     else
     {
-      std::fprintf (stderr, "usage: %s [--data DIR] [--only NAME,NAME]\n", argv[0]);
+      std::fprintf (stderr, "usage: %s [--data DIR] [--only NAME,NAME] [--sizes N,N]\n", argv[0]);
       return 2;
     }
   }
   if (argc % 2 == 0)
   {
-    std::fprintf (stderr, "usage: %s [--data DIR] [--only NAME,NAME]\n", argv[0]);
+    std::fprintf (stderr, "usage: %s [--data DIR] [--only NAME,NAME] [--sizes N,N]\n", argv[0]);
     return 2;
   }
   const auto wanted = [&] (const std::string &name) {
@@ -169,18 +182,20 @@ main (int argc, char **argv)
     for (std::size_t n : {10000, 20000, 50000})
       for (double noise : {0.005, 0.01, 0.02, 0.03})
       {
-        seed += 2;  // the same seeds whichever shapes run
-        if (!wanted (shape.name))
+        seed += 2;  // the same seeds whichever shapes and sizes run
+        if (!wanted (shape.name) || sizes.find ("," + std::to_string (n) + ",") == std::string::npos)
           continue;
         clouds.emplace_back (new Cloud (shape.sample (n, noise, seed)));
         of.push_back (&shape);
         tikhonov.push_back (sweep<GraphTikhonovSmoothing<pcl::PointXYZ>> (clouds.back (), shape.error));
         tv.push_back (sweep<GraphTVSmoothing<pcl::PointXYZ>> (clouds.back (), shape.error));
         std::printf ("%-32s %5zu noise %.3f r %.3f | best multiple: Tikhonov %g (%.3gx the default's "
-                     "error), TV %g (%.3gx)\n",
+                     "error; risk estimate %.3g: %.3gx), TV %g (%.3gx; risk estimate %.3g: %.3gx)\n",
                      shape.name.c_str (), n, noise, tikhonov.back ().r, tikhonov.back ().best_m,
-                     tikhonov.back ().error[kDefault] / tikhonov.back ().best, tv.back ().best_m,
-                     tv.back ().error[kDefault] / tv.back ().best);
+                     tikhonov.back ().error[kDefault] / tikhonov.back ().best, tikhonov.back ().risk_m,
+                     tikhonov.back ().risk_error / tikhonov.back ().best, tv.back ().best_m,
+                     tv.back ().error[kDefault] / tv.back ().best, tv.back ().risk_m,
+                     tv.back ().risk_error / tv.back ().best);
         for (const Sample *sample : {&tikhonov.back (), &tv.back ()})
         {
           std::printf ("raw %s %s %zu %g %g %g", sample == &tv.back () ? "tv" : "tikhonov",
@@ -195,7 +210,7 @@ main (int argc, char **argv)
   {
     const auto &samples = which == 0 ? tikhonov : tv;
     const auto [a, b] = fit (samples);
-    double log_current = 0.0, log_fitted = 0.0;
+    double log_current = 0.0, log_fitted = 0.0, log_risk = 0.0;
     for (std::size_t i = 0; i < samples.size (); ++i)
     {
       const double m = std::exp (a) * std::pow (samples[i].r, b);
@@ -215,12 +230,13 @@ main (int argc, char **argv)
         f.filter (out);
       }
       log_current += std::log (samples[i].error[kDefault] / samples[i].best);
+      log_risk += std::log (samples[i].risk_error / samples[i].best);
       log_fitted += std::log (of[i]->error (out) / samples[i].best);
     }
     std::printf ("%s: best multiple ~ %.3g r^%.3f; error over the best of the sweep, geometric "
-                 "mean: current rule %.3f, fitted %.3f\n",
+                 "mean: current rule %.3f, fitted %.3f, risk estimate %.3f\n",
                  which == 0 ? "Tikhonov" : "TV", std::exp (a), b, std::exp (log_current / samples.size ()),
-                 std::exp (log_fitted / samples.size ()));
+                 std::exp (log_fitted / samples.size ()), std::exp (log_risk / samples.size ()));
   }
   return 0;
 }

@@ -57,6 +57,7 @@ struct MethodResult
 struct MethodOptions
 {
   bool wlop = true;                                  ///< WLOP is slow: optional
+  bool risk_gamma = true;  ///< ours with GammaSelection::RISK_ESTIMATE (about 20 runs each)
   std::vector<unsigned> bilateral_k = {30, 60, 120}; ///< the bilateral filter's sweep
 };
 
@@ -73,10 +74,11 @@ runMethods (const Cloud::Ptr &noisy, const std::function<double (const Cloud &)>
 /** A smoother of ours with its data-derived gamma, and at the best of `factors` times
  *  that gamma (the default itself counting as the factor 1): the results named
  *  "<name> (defaults)" and "<name> (best γ)". The filter's other settings are the
- *  caller's. */
+ *  caller's; `rule_gamma`, when given, receives the data-derived gamma. */
 std::pair<MethodResult, MethodResult>
 defaultAndBestGamma (GraphSmoothing<pcl::PointXYZ> &filter, const std::string &name, const Cloud::Ptr &noisy,
-                     const std::function<double (const Cloud &)> &error, const std::vector<double> &factors);
+                     const std::function<double (const Cloud &)> &error, const std::vector<double> &factors,
+                     double *rule_gamma = nullptr);
 
 /** The methods runMethods reports, in order; the peers come from `firstPeer ()` on. */
 const std::vector<std::string> &

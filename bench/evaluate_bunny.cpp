@@ -77,7 +77,10 @@ bunny (const Options &options)
   MethodOptions method_options;
   method_options.wlop = false;  // about 2 minutes per scan here
   if (options.quick)
+  {
     method_options.bilateral_k = {60};
+    method_options.risk_gamma = false;
+  }
 
   std::map<std::string, std::vector<MethodResult>> table;
   for (const auto &file : files)

@@ -50,7 +50,8 @@ bestOf (const std::string &method, const std::vector<Setting> &settings,
 
 std::pair<MethodResult, MethodResult>
 defaultAndBestGamma (GraphSmoothing<pcl::PointXYZ> &filter, const std::string &name, const Cloud::Ptr &noisy,
-                     const std::function<double (const Cloud &)> &error, const std::vector<double> &factors)
+                     const std::function<double (const Cloud &)> &error, const std::vector<double> &factors,
+                     double *rule_gamma)
 {
   filter.setAutomaticGamma ();
   filter.setInputCloud (noisy);
@@ -59,6 +60,8 @@ defaultAndBestGamma (GraphSmoothing<pcl::PointXYZ> &filter, const std::string &n
   by_default.seconds = seconds ([&] { filter.filter (by_default.output); });
   by_default.error = error (by_default.output);
   const double gamma = filter.getUsedGamma ();
+  if (rule_gamma)
+    *rule_gamma = gamma;
   MethodResult best = bestOf<double> (
       name + " (best γ)", factors,
       [&] (const double &f) {
@@ -87,15 +90,15 @@ methodNames ()
 {
   static const std::vector<std::string> names = {
       "noisy input",       "Tikhonov (defaults)", "Tikhonov (best γ)",  "TV (defaults)",
-      "TV (best γ)",       "MLS (best radius)",   "jet (best k)",       "bilateral (best k)",
-      "WLOP"};
+      "TV (best γ)",       "Tikhonov (risk γ)",   "TV (risk γ)",        "MLS (best radius)",
+      "jet (best k)",      "bilateral (best k)",  "WLOP"};
   return names;
 }
 
 std::size_t
 firstPeer ()
 {
-  return 5;
+  return 7;
 }
 
 std::vector<MethodResult>
@@ -113,12 +116,35 @@ runMethods (const Cloud::Ptr &noisy, const std::function<double (const Cloud &)>
   GraphTVSmoothing<pcl::PointXYZ> tv;
   const std::pair<GraphSmoothing<pcl::PointXYZ> *, const char *> ours[] = {{&tikhonov, "Tikhonov"},
                                                                            {&tv, "TV"}};
+  std::vector<MethodResult> by_risk;
   for (const auto &[filter, name] : ours)
   {
-    auto r = defaultAndBestGamma (*filter, name, noisy, error, factors);
+    double rule_gamma = 0.0;
+    auto r = defaultAndBestGamma (*filter, name, noisy, error, factors, &rule_gamma);
     results.push_back (std::move (r.first));
     results.push_back (std::move (r.second));
+    // GammaSelection::RISK_ESTIMATE, with the multiple of the rule's gamma it chose.
+    MethodResult risk;
+    risk.method = std::string (name) + " (risk γ)";
+    if (!options.risk_gamma)
+    {
+      risk.setting = "not run";
+      risk.error = risk.seconds = std::nan ("");
+      by_risk.push_back (std::move (risk));
+      continue;
+    }
+    filter->setAutomaticGamma ();
+    filter->setGammaSelection (GammaSelection::RISK_ESTIMATE);
+    risk.seconds = seconds ([&] { filter->filter (risk.output); });
+    risk.error = error (risk.output);
+    char label[32];
+    std::snprintf (label, sizeof (label), "%.3gx", rule_gamma > 0.0 ? filter->getUsedGamma () / rule_gamma : 0.0);
+    risk.setting = label;
+    filter->setGammaSelection (GammaSelection::RULE);
+    by_risk.push_back (std::move (risk));
   }
+  for (auto &r : by_risk)
+    results.push_back (std::move (r));
 
   const double d20 = peers::meanKthNeighbourDistance (*noisy, 20);
   const auto label_k = [] (const unsigned &k) { return "k=" + std::to_string (k); };

@@ -51,7 +51,10 @@ runCase (const Cloud &clean, const Cloud::Ptr &noisy, const MeshDistance &mesh, 
   MethodOptions options;
   options.wlop = wlop;
   if (quick)
+  {
     options.bilateral_k = {60};
+    options.risk_gamma = false;
+  }
   const auto results = runMethods (
       noisy, [&] (const Cloud &out) { return pointToMeshDistance (out, mesh) * 1e4; }, options);
   const Similarity frame = unitSphereNormalisation (clean);
