@@ -255,6 +255,50 @@ third length must capture: the best multiple is ¼, the floor of the sweep, on t
 1.4–2.3× the best error). Detail the quadric cannot follow limits γ, density raises it, and a
 surface of constant curvature takes any γ: the rule needs a measure of the surface's detail.
 
+**Choosing γ by a risk estimate** (`setGammaSelection (GammaSelection::RISK_ESTIMATE)`,
+`-gamma risk`; `core::selectGammaByRisk`). Instead of a measure of detail, the filter can
+measure its own error without ground truth. For Gaussian noise of level σ per axis, Stein's
+lemma gives an unbiased estimate of the squared error along the normals nᵢ of any denoiser F:
+R = Σᵢ (nᵢ·(F(f)ᵢ − fᵢ))² − Nσ² + 2σ² div F, and the divergence is estimated by one random probe,
+div F ≈ Σᵢ zᵢ nᵢ·(F(f + ε z n)ᵢ − F(f)ᵢ) / ε with zᵢ standard normal. The filter runs its whole
+pass (solve, twicing, quadric) at the rule's γ × ¼, ½, 1 … 16, then one step of √2 on each side of
+the best, and keeps the lowest R (σ = σ̂; on more than 50,000 points, four blocks of 12,500
+consecutive vertices in the Morton order, which keep the density). Two details decided whether it
+worked, measured with Tikhonov on 36 clouds (casting, bunny, block, dragon, sphere, cube; 10,000
+and 50,000 points; σ = 0.5, 1, 3%; error of the chosen multiple over the best of the sweep,
+geometric mean; the rule 1.23×): with a small probe (ε = σ̂/10) and the normals of the noisy
+points, 1.14×, failing at 3% noise (bunny, block, sphere at 50,000 points: 2.2–4.6×) — the
+robust quadric fit jumps between sheets, which a small step does not see, and noisy normals
+count tangential moves; with ε = σ̂ and the normals of the points denoised at the rule's γ,
+1.08×. Its remaining misses: the sphere at 50,000 points and 3% (2.9×, the rule 3.3×), where σ̂ is
+0.82 σ, and the casting, where σ̂ is 2.2 σ at 1%: with the true σ the estimate picks the best
+multiple there (TV, ¼ against 1 with σ̂).
+
+`build/bench/calibrate_gamma` (the library's filters; 44 clouds: the casting at 10,000, 20,000
+and 50,000 points, the dragon, the bunny, the sphere and the cube at 10,000 and 20,000; σ = 0.5,
+1, 2, 3%; `--only dragon,bun_zipper,sphere,cube --sizes 10000,20000` for the second part) gives,
+as the error over the best of the sweep (geometric mean):
+
+| | rule | risk estimate | the sphere (8 clouds): rule / risk | the casting (12): rule / risk |
+|---|---|---|---|---|
+| Tikhonov | 1.195 | **1.039** | 1.82 / 1.01 | 1.19 / 1.09 |
+| TV | 1.104 | **1.052** | 1.35 / 1.04 | 1.08 / 1.12 |
+
+On the quick PU-GAN subset (casting, fandisk, kitten; 10,000 points; P2M ×10⁴ at 1 / 2 / 3%),
+Tikhonov goes from 1.20 / 2.03 / 2.79 to 0.97 / 1.89 / 2.78 (its best γ: 0.84 / 1.69 / 2.51;
+jet 0.78 / 1.51 / 2.69), TV stays (0.89 / 1.72 / 2.77 → 0.90 / 1.79 / 2.76). The price is time:
+2.9 s against 0.19 s per 10,000-point cloud for Tikhonov, 8.2 s against 0.31 s for TV (measured
+while another job ran). So it stays an option; the full PU-GAN tables above do not have it yet.
+
+On a million points the blocks fail. `build/bench/bench_smoothing 1000000` (noisy unit sphere,
+σ = 1%): the rule's γ leaves a mean distance of 0.00315, while 4×, 16× and 64× its γ give
+0.00152, 0.00058 and 0.00024 (MLS at its best radius 0.00086); the risk estimate chose 1× on
+four blocks of 12,500 vertices and on four of 50,000 alike (2× with the true σ instead of
+σ̂ = 0.67 σ). At such strengths the smoothing reaches further than a block is wide, so the blocks'
+borders decide. It then cost 16.1 s against 7.2 s for Tikhonov, 44.6 s against 14.7 s for TV.
+The same run shows how far the rule's density term falls short at that size: more than 64× on
+a sphere, where it is 8–16× at 10,000–50,000 points.
+
 ## 6. Time-varying clouds
 
 `GraphSequenceSmoothing` denoises each frame on the paper's spatio-temporal graph (k1 = 10
