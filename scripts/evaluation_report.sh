@@ -290,14 +290,15 @@ jet 0.78 / 1.51 / 2.69), TV stays (0.89 / 1.72 / 2.77 → 0.90 / 1.79 / 2.76). T
 2.9 s against 0.19 s per 10,000-point cloud for Tikhonov, 8.2 s against 0.31 s for TV (measured
 while another job ran). So it stays an option; the full PU-GAN tables above do not have it yet.
 
-On a million points the blocks fail. `build/bench/bench_smoothing 1000000` (noisy unit sphere,
+On a million points it fails. `build/bench/bench_smoothing 1000000` (noisy unit sphere,
 σ = 1%): the rule's γ leaves a mean distance of 0.00315, while 4×, 16× and 64× its γ give
-0.00152, 0.00058 and 0.00024 (MLS at its best radius 0.00086); the risk estimate chose 1× on
-four blocks of 12,500 vertices and on four of 50,000 alike (2× with the true σ instead of
-σ̂ = 0.67 σ). At such strengths the smoothing reaches further than a block is wide, so the blocks'
-borders decide. It then cost 16.1 s against 7.2 s for Tikhonov, 44.6 s against 14.7 s for TV.
-The same run shows how far the rule's density term falls short at that size: more than 64× on
-a sphere, where it is 8–16× at 10,000–50,000 points.
+0.00152, 0.00058 and 0.00024 (MLS at its best radius 0.00086); the risk estimate chose 1×, on
+four blocks of 12,500 vertices, on four of 50,000 and on the whole graph alike (2× on the blocks
+with the true σ instead of σ̂ = 0.67 σ). There the noise is 2.6 times the spacing, as at 50,000
+points and 3% where it also fell short: every two-ring neighbourhood lies inside the noise, σ̂
+falls short and the estimate with it. It then cost 16.1 s against 7.2 s for Tikhonov, 44.6 s
+against 14.7 s for TV. The same run shows how far the rule's density term falls short at that
+size: more than 64× on a sphere, where it is 8–16× at 10,000–50,000 points.
 
 ## 6. Time-varying clouds
 

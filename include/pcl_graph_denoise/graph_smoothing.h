@@ -138,10 +138,9 @@ public:
    *  normals, which needs no ground truth (core::selectGammaByRisk). It follows what the
    *  surface's detail allows, which the rule cannot see (less smoothing on thin parts,
    *  more on smooth ones); it costs about 19 extra runs on at most 50,000 points (four
-   *  blocks of the cloud when larger). Assumes noise of the same level everywhere. On
-   *  clouds far larger than the blocks, a strength that reaches across a block is judged
-   *  by the blocks' borders and comes out too low (docs/evaluation.md, section 5). Used
-   *  only while gamma is automatic. */
+   *  blocks of the cloud when larger). Assumes noise of the same level everywhere. Where
+   *  the noise is larger than the point spacing it chooses too little smoothing
+   *  (docs/evaluation.md, section 5). Used only while gamma is automatic. */
   inline void
   setGammaSelection (GammaSelection selection) { gamma_selection_ = selection; }
 

@@ -131,9 +131,7 @@ struct RiskSelectionParams
    *  one step of sqrt 2 on each side. */
   std::vector<double> multiples = {0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0};
   /** At most this many vertices take part: larger graphs are sampled in four blocks of
-   *  consecutive (hence spatially compact) vertices, which keep the density. A strength
-   *  whose smoothing reaches across a block is then judged by the block's borders and
-   *  comes out too low. */
+   *  consecutive (hence spatially compact) vertices, which keep the density. */
   std::size_t sample_size = 50000;
   std::uint64_t seed = 1;  ///< of the random probe (results are deterministic)
   int num_threads = 0;     ///< for the normals; 0 = all hardware threads
