@@ -313,8 +313,8 @@ On a million points it fails. `build/bench/bench_smoothing 1000000` (noisy unit 
 four blocks of 12,500 vertices, on four of 50,000 and on the whole graph alike (2× on the blocks
 with the true σ instead of σ̂ = 0.67 σ). There the noise is 2.6 times the spacing, as at 50,000
 points and 3% where it also fell short: every two-ring neighbourhood lies inside the noise, σ̂
-falls short and the estimate with it. It then cost 16.1 s against 7.2 s for Tikhonov, 44.6 s
-against 14.7 s for TV. The same run shows how far the rule's density term falls short at that
+falls short and the estimate with it. It then cost 13.5 s against 5.9 s for Tikhonov, 39.3 s
+against 11.8 s for TV (the graph alone 1.1 s). The same run shows how far the rule's density term falls short at that
 size: more than 64× on a sphere, where it is 8–16× at 10,000–50,000 points.
 
 ## 6. Time-varying clouds
