@@ -142,7 +142,8 @@ selectGammaByRisk (const PointGraph &graph, const Signal3 &f, double noise, doub
           sum += residual * residual + 2.0 * noise * (x_moved.row (v) - x.row (v)).dot (probe[b].row (v));
         }
     }
-    return sum;
+    // A run that overflowed (a strength far too large) is never the best.
+    return std::isfinite (sum) ? sum : std::numeric_limits<double>::infinity ();
   };
 
   std::vector<std::pair<double, double>> tried;  // (multiple, risk)
