@@ -427,6 +427,14 @@ TEST (RiskSelection, DegenerateInputsKeepGammaAndInvalidSettingsThrow)
   bad.sample_size = 100;
   bad.num_threads = -1;
   EXPECT_THROW (selectGammaByRisk (g, f, 0.01, 0.5, counting, bad), std::invalid_argument);
+  // A run that overflows is never chosen, wherever it comes in the order tried.
+  const Denoiser overflowing = [&] (const PointGraph &graph, const Signal3 &s, double gm) {
+    Signal3 x = tikhonovDenoiser (graph, s, gm);
+    if (gm < 0.3 * 0.5)
+      x (0, 0) = std::numeric_limits<double>::quiet_NaN ();
+    return x;
+  };
+  EXPECT_GE (selectGammaByRisk (g, f, 0.01, 0.5, overflowing), 0.3 * 0.5);
   // A single multiple: it and its two neighbours are tried (2 runs each), plus the normals.
   RiskSelectionParams one;
   one.multiples = {1.0};
