@@ -764,6 +764,43 @@ TEST (SmoothingBadInput, EmptyAllNaNOnePointDuplicatesAndFewPoints)
   EXPECT_TRUE (sameCloud (out, *same));
 }
 
+TEST (SmoothingBadInput, RiskSelectionOnDegenerateCloudsKeepsTheRulesResult)
+{
+  // Nothing to estimate (no neighbour, no noise, one position): the selection keeps the
+  // rule's gamma, so the result is the rule's, finite, and the input is not touched.
+  std::vector<std::shared_ptr<pcl::PointCloud<pcl::PointXYZ>>> clouds;
+  clouds.push_back (std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ());
+  clouds.back ()->push_back (pcl::PointXYZ (1.5f, -2.0f, 3.25f));
+  clouds.push_back (std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ());
+  for (int i = 0; i < 4; ++i)
+    clouds.back ()->push_back (pcl::PointXYZ (0.1f * i, 0.0f, 0.0f));
+  clouds.back ()->push_back ((*clouds.back ())[1]);
+  clouds.push_back (std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ());
+  clouds.back ()->resize (40, pcl::PointXYZ (1.0f, 2.0f, 3.0f));
+  clouds.push_back (std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ());
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j)
+      clouds.back ()->push_back (pcl::PointXYZ (0.01f * i, 0.01f * j, 0.5f));  // noiseless plane
+  for (int which = 0; which < 2; ++which)
+    for (const auto &cloud : clouds)
+    {
+      std::unique_ptr<GraphSmoothing<pcl::PointXYZ>> filter;
+      if (which == 0)
+        filter.reset (new GraphTikhonovSmoothing<pcl::PointXYZ>);
+      else
+        filter.reset (new GraphTVSmoothing<pcl::PointXYZ>);
+      const pcl::PointCloud<pcl::PointXYZ> before = *cloud;
+      const auto rule = run (*filter, cloud);
+      filter->setGammaSelection (GammaSelection::RISK_ESTIMATE);
+      const auto risk = run (*filter, cloud);
+      ASSERT_EQ (risk->size (), cloud->size ());
+      EXPECT_TRUE (sameCloud (*risk, *rule)) << cloud->size () << " points";
+      EXPECT_TRUE (sameCloud (*cloud, before));
+      for (const auto &p : *risk)
+        EXPECT_TRUE (isFinitePosition (p));
+    }
+}
+
 TEST (SmoothingBadInput, IndicesOutOfRange)
 {
   auto cloud = std::make_shared<synthetic::Cloud> (synthetic::noisySphere (500, 1.0, 0.02, 40));
