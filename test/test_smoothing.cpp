@@ -438,8 +438,8 @@ TEST (SmoothingQuality, RiskEstimateFollowsTheSurfacesDetail)
     double within_best;  // the risk estimate's error at most this times the sweep's best
   };
   const std::vector<Shape> shapes = {
-      {"sphere", synthetic::noisySphere (10000, 1.0, 0.01, 36), kToSphere, true, 1.1},
-      {"corrugated square", noisyBumps (20000, 0.005, 37), distanceToBumps, false, 1.3}};
+      {"sphere", synthetic::noisySphere (6000, 1.0, 0.01, 36), kToSphere, true, 1.1},
+      {"corrugated square", noisyBumps (12000, 0.005, 37), distanceToBumps, false, 1.3}};
   for (int which = 0; which < 2; ++which)
     for (const auto &shape : shapes)
     {
