@@ -115,11 +115,11 @@ selectGammaByRisk (const PointGraph &graph, const Signal3 &f, double noise, doub
   // the given gamma.
   std::mt19937_64 rng (params.seed);
   std::normal_distribution<double> gaussian;
-  std::vector<Signal3> normals, probe, moved;
+  std::vector<Signal3> at_gamma, normals, probe, moved;  // at_gamma: the run at multiple 1
   for (const Block &block : blocks)
   {
-    normals.push_back (
-        estimateNormals (block.graph, denoise (block.graph, block.f, gamma), params.num_threads));
+    at_gamma.push_back (denoise (block.graph, block.f, gamma));
+    normals.push_back (estimateNormals (block.graph, at_gamma.back (), params.num_threads));
     Signal3 z (block.f.rows (), 3);
     for (Eigen::Index v = 0; v < z.rows (); ++v)
       z.row (v) = gaussian (rng) * normals.back ().row (v);
@@ -132,7 +132,7 @@ selectGammaByRisk (const PointGraph &graph, const Signal3 &f, double noise, doub
     for (std::size_t b = 0; b < blocks.size (); ++b)
     {
       const Block &block = blocks[b];
-      const Signal3 x = denoise (block.graph, block.f, multiple * gamma);
+      const Signal3 x = multiple == 1.0 ? at_gamma[b] : denoise (block.graph, block.f, multiple * gamma);
       const Signal3 x_moved = denoise (block.graph, moved[b], multiple * gamma);
       for (Eigen::Index v = 0; v < x.rows (); ++v)
         if (block.interior[static_cast<std::size_t> (v)])
