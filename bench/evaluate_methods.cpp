@@ -46,6 +46,17 @@ bestOf (const std::string &method, const std::vector<Setting> &settings,
   return best;
 }
 
+/** A row for a method that was not run (its error and time NaN). */
+MethodResult
+notRun (const std::string &method)
+{
+  MethodResult result;
+  result.method = method;
+  result.setting = "not run";
+  result.error = result.seconds = std::nan ("");
+  return result;
+}
+
 } // namespace
 
 std::pair<MethodResult, MethodResult>
@@ -124,15 +135,14 @@ runMethods (const Cloud::Ptr &noisy, const std::function<double (const Cloud &)>
     results.push_back (std::move (r.first));
     results.push_back (std::move (r.second));
     // GammaSelection::RISK_ESTIMATE, with the multiple of the rule's gamma it chose.
-    MethodResult risk;
-    risk.method = std::string (name) + " (risk γ)";
+    const std::string method = std::string (name) + " (risk γ)";
     if (!options.risk_gamma)
     {
-      risk.setting = "not run";
-      risk.error = risk.seconds = std::nan ("");
-      by_risk.push_back (std::move (risk));
+      by_risk.push_back (notRun (method));
       continue;
     }
+    MethodResult risk;
+    risk.method = method;
     filter->setAutomaticGamma ();
     filter->setGammaSelection (GammaSelection::RISK_ESTIMATE);
     risk.seconds = seconds ([&] { filter->filter (risk.output); });
@@ -163,19 +173,16 @@ runMethods (const Cloud::Ptr &noisy, const std::function<double (const Cloud &)>
   results.push_back (bestOf<unsigned> (
       "bilateral (best k)", options.bilateral_k,
       [&] (const unsigned &k) { return peers::bilateralSmooth (*noisy, k, 25.0, 3); }, label_k, error));
-  MethodResult wlop;
-  wlop.method = "WLOP";
   if (options.wlop)
   {
+    MethodResult wlop;
+    wlop.method = "WLOP";
     wlop.seconds = seconds ([&] { wlop.output = peers::wlop (*noisy, 0.0); });
     wlop.error = error (wlop.output);
+    results.push_back (std::move (wlop));
   }
   else
-  {
-    wlop.setting = "not run";
-    wlop.error = wlop.seconds = std::nan ("");
-  }
-  results.push_back (wlop);
+    results.push_back (notRun ("WLOP"));
   return results;
 }
 
