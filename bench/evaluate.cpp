@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <iostream>
@@ -106,5 +107,16 @@ main (int argc, char **argv)
       return under_ci ? 1 : 77;
     }
   }
-  return it->second (options);
+  // The tables, plots and clouds go to --out: made if missing; a tool that cannot write
+  // them, or meets a malformed file, says so and exits instead of aborting.
+  try
+  {
+    std::filesystem::create_directories (options.out);
+    return it->second (options);
+  }
+  catch (const std::exception &e)
+  {
+    std::fprintf (stderr, "error: %s\n", e.what ());
+    return 1;
+  }
 }
