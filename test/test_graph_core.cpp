@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -549,6 +550,153 @@ TEST (RadiusGraph, DegreesWithoutTheGraphMatchTheGraphsDegrees)
     ASSERT_NEAR (d.degree[g.order[v]], by_vertex[v], 1e-9 * (1.0 + by_vertex[v]));
   params.num_threads = 2;
   EXPECT_EQ (radiusGraphDegrees (p, params).degree, d.degree);
+}
+
+namespace {
+
+/** n points uniform on the square [0, 1]^2 at z = `height`, with Gaussian noise of
+ *  standard deviation `noise` along z. */
+PointMatrix
+noisySquare (int n, float noise, std::uint64_t seed, float height = 0.0f)
+{
+  std::mt19937_64 rng (seed);
+  std::uniform_real_distribution<float> u (0.0f, 1.0f);
+  std::normal_distribution<float> g (0.0f, 1.0f);
+  PointMatrix p (n, 3);
+  for (int i = 0; i < n; ++i)
+    p.row (i) << u (rng), u (rng), height + noise * g (rng);
+  return p;
+}
+
+/** n points uniform on the surface of the cube [-1, 1]^3 (sharp edges and corners). */
+PointMatrix
+cubeSurface (int n, std::uint64_t seed)
+{
+  std::mt19937_64 rng (seed);
+  std::uniform_real_distribution<float> u (-1.0f, 1.0f);
+  PointMatrix p (n, 3);
+  for (int i = 0; i < n; ++i)
+  {
+    const int face = i % 6;
+    p.row (i) << u (rng), u (rng), u (rng);
+    p (i, face / 2) = face % 2 ? 1.0f : -1.0f;
+  }
+  return p;
+}
+
+} // namespace
+
+TEST (RadiusGraph, NormalResidualFlagsPointsOffTheSurfaceOnly)
+{
+  const float noise = 0.002f;
+  PointMatrix p (4000 + 6, 3);
+  p.topRows (4000) = noisySquare (4000, noise, 31);
+  // Probes well apart, at 1, 2 and 6, 8, 10, 11 noise levels above the plane: all
+  // well within epsilon of it, where their degree is an inlier's.
+  const float heights[6] = {1, 2, 6, 8, 10, 11};
+  for (int m = 0; m < 6; ++m)
+    p.row (4000 + m) << 0.15f + 0.14f * m, 0.5f, heights[m] * noise;
+  RadiusGraphParams params;
+  params.residual_multiplier = 4.0;
+  const RadiusDegrees d = radiusGraphDegrees (p, params);
+  ASSERT_EQ (d.off_surface.size (), p.rows ());
+  ASSERT_LT (heights[5] * noise, 0.6 * d.radius);
+  EXPECT_FALSE (d.off_surface[4000]);
+  EXPECT_FALSE (d.off_surface[4001]);
+  for (int m = 2; m < 6; ++m)
+    EXPECT_TRUE (d.off_surface[4000 + m]) << heights[m] << " noise levels off";
+  // The noise scale is the noise: residuals are the noise less its mean over a neighbourhood.
+  EXPECT_NEAR (d.residual_scale, noise, 0.2 * noise);
+  std::size_t flagged = 0;
+  for (int i = 0; i < 4000; ++i)
+    flagged += d.off_surface[i];
+  EXPECT_LE (flagged, 4u);  // a Gaussian's tail beyond about 4 sigma
+  // The flags do not depend on the number of threads.
+  params.num_threads = 1;
+  EXPECT_EQ (radiusGraphDegrees (p, params).off_surface, d.off_surface);
+  // Nor do the degrees on the test.
+  params.residual_multiplier = 0.0;
+  EXPECT_EQ (radiusGraphDegrees (p, params).degree, d.degree);
+}
+
+TEST (RadiusGraph, NormalResidualIsNotMaskedByAFewOutliersNearby)
+{
+  // Two outliers close to each other, 10 noise levels above the plane: each is among the
+  // other's neighbours, and the refit without the neighbours off the first plane keeps
+  // that from hiding it.
+  const float noise = 0.002f;
+  PointMatrix p (4002, 3);
+  p.topRows (4000) = noisySquare (4000, noise, 32);
+  p.row (4000) << 0.5f, 0.5f, 10 * noise;
+  p.row (4001) << 0.51f, 0.5f, 10 * noise;
+  RadiusGraphParams params;
+  params.residual_multiplier = 4.0;
+  const RadiusDegrees d = radiusGraphDegrees (p, params);
+  EXPECT_TRUE (d.off_surface[4000]);
+  EXPECT_TRUE (d.off_surface[4001]);
+}
+
+TEST (RadiusGraph, NormalResidualKeepsALayerButNotALonePoint)
+{
+  // A noiseless 60 x 60 grid (as a depth camera's quantised depth: flat levels) where a
+  // row of three neighbouring points sits half a grid step higher (as mixed pixels along a
+  // silhouette), and one point alone at that height elsewhere: each point of the row has
+  // others level with it and stays; the lone point goes.
+  const int side = 60;
+  const float h = 1.0f / side;
+  PointMatrix p (side * side, 3);
+  for (int r = 0; r < side; ++r)
+    for (int c = 0; c < side; ++c)
+      p.row (r * side + c) << c * h, r * h, 0.0f;
+  std::set<int> row;
+  for (int c = 20; c < 23; ++c)
+    row.insert (30 * side + c);
+  for (const int i : row)
+    p (i, 2) = 0.5f * h;
+  const int lone = 30 * side + 45;
+  p (lone, 2) = 0.5f * h;
+  RadiusGraphParams params;
+  params.residual_multiplier = 4.0;
+  const RadiusDegrees d = radiusGraphDegrees (p, params);
+  EXPECT_TRUE (d.off_surface[lone]);
+  for (int i = 0; i < p.rows (); ++i)
+    if (i != lone)
+      EXPECT_FALSE (d.off_surface[i]) << "point " << i << (row.count (i) ? " (row)" : "");
+}
+
+TEST (RadiusGraph, NormalResidualKeepsSharpEdgesCornersAndNoiselessSurfaces)
+{
+  RadiusGraphParams params;
+  params.residual_multiplier = 4.0;
+  for (const int n : {2000, 20000})
+  {
+    const RadiusDegrees d = radiusGraphDegrees (cubeSurface (n, 33), params);
+    EXPECT_EQ (std::count (d.off_surface.begin (), d.off_surface.end (), 1), 0) << n << " points";
+  }
+  // A noiseless plane far from the origin: rounding is not noise.
+  const RadiusDegrees far = radiusGraphDegrees (noisySquare (3000, 0.0f, 34, 1e4f), params);
+  EXPECT_EQ (std::count (far.off_surface.begin (), far.off_surface.end (), 1), 0);
+  EXPECT_GT (far.residual_scale, 0.0);
+}
+
+TEST (RadiusGraph, NormalResidualOffByDefaultAndValidated)
+{
+  const PointMatrix p = noisySquare (500, 0.01f, 35);
+  const RadiusDegrees d = radiusGraphDegrees (p);
+  EXPECT_TRUE (d.off_surface.empty ());
+  EXPECT_EQ (d.residual_scale, 0.0);
+  for (const double bad : {-1.0, std::numeric_limits<double>::quiet_NaN (),
+                           std::numeric_limits<double>::infinity ()})
+  {
+    RadiusGraphParams params;
+    params.residual_multiplier = bad;
+    EXPECT_THROW (radiusGraphDegrees (p, params), std::invalid_argument) << bad;
+  }
+  // Too few neighbours for a plane: nothing flagged, also with a tiny multiplier.
+  RadiusGraphParams params;
+  params.residual_multiplier = 1e-6;
+  const RadiusDegrees few = radiusGraphDegrees (noisySquare (4, 0.01f, 36), params);
+  EXPECT_EQ (few.off_surface, std::vector<std::uint8_t> (4, 0));
 }
 
 class Operators : public ::testing::Test

@@ -5,6 +5,8 @@
 #include <pcl_graph_denoise/core/graph.h>
 #include <pcl_graph_denoise/core/memory.h>
 
+#include <Eigen/Eigenvalues>
+
 #include "neighbor_search.h"
 #include "parallel.h"
 #include "spatial_order.h"
@@ -474,6 +476,157 @@ prepareRadiusSearch (const PointMatrix &points, const RadiusGraphParams &params)
   return search;
 }
 
+/** Fewest neighbours whose weighted plane gives a point a normal residual. */
+constexpr std::size_t kMinPlaneNeighbours = 5;
+
+/** Most neighbours level with a point flagged off the surface: an outlier may have a
+ *  companion, but three points level off a plane make a layer. */
+constexpr std::size_t kMaxSupport = 1;
+
+/** Most refits of a neighbourhood's plane without the neighbours off it. */
+constexpr int kMaxRefits = 4;
+
+/** Smallest noise scale of the residual test, in spacings: deviations below a hundredth
+ *  of the spacing (rounding, quantised coordinates) count as no noise. */
+constexpr double kResidualFloor = 0.01;
+
+/** Median of the finite values of `values` (NaN when there is none). */
+double
+finiteMedian (std::vector<float> values)
+{
+  values.erase (std::remove_if (values.begin (), values.end (),
+                                [] (float v) { return !std::isfinite (v); }),
+                values.end ());
+  if (values.empty ())
+    return std::numeric_limits<double>::quiet_NaN ();
+  auto middle = values.begin () + values.size () / 2;
+  std::nth_element (values.begin (), middle, values.end ());
+  return *middle;
+}
+
+/** The plane of a point's neighbours, itself excluded, refitted without the neighbours
+ *  farther than 3 spreads from the last plane until none is (at most kMaxRefits times):
+ *  a few outliers among them then neither tilt it nor widen its spread, and near a sharp
+ *  edge it settles on the point's own face. */
+struct PlaneFit
+{
+  double residual = 0.0;  ///< |n . (p - c)|: the point's distance to the plane
+  double spread = 0.0;    ///< RMS distance of the neighbours to the plane
+  double first_residual = 0.0;  ///< the residual from the plane of all the neighbours
+  double first_spread = 0.0;    ///< the spread about that plane
+  /** Neighbours about as far off the final plane as the point (closer to the point than
+   *  half its residual, along the normal): it is not alone there, but on a layer, a step
+   *  or the other side of an edge. */
+  std::size_t support = 0;
+
+  /** Fits the neighbours whose weight is 1 (`weights` holds 1 or 0 per neighbour, and is
+   *  overwritten). False when fewer than kMinPlaneNeighbours of them remain. */
+  bool
+  fit (const PointMatrix &points, VertexIndex self, const std::vector<VertexIndex> &neighbors,
+       std::vector<double> &weights, double floor)
+  {
+    const Eigen::Vector3d p = points.row (self).transpose ().cast<double> ();
+    std::size_t kept = static_cast<std::size_t> (
+        std::count_if (weights.begin (), weights.end (), [] (double w) { return w > 0.0; }));
+    if (kept < kMinPlaneNeighbours || !solve (points, p, neighbors, weights))
+      return false;
+    first_residual = residual;
+    first_spread = spread;
+    candidates_.assign (weights.begin (), weights.end ());
+    for (int refit = 0; refit < kMaxRefits; ++refit)
+    {
+      const double limit = 3.0 * std::max (spread, floor);
+      std::size_t dropped = 0;
+      for (std::size_t m = 0; m < neighbors.size (); ++m)
+        if (weights[m] > 0.0 &&
+            std::abs (normal.dot (points.row (neighbors[m]).transpose ().cast<double> () - p) -
+                      offset) > limit)
+        {
+          weights[m] = 0.0;
+          ++dropped;
+        }
+      if (dropped == 0)
+        break;
+      kept -= dropped;
+      if (kept < kMinPlaneNeighbours || !solve (points, p, neighbors, weights))
+        return false;
+    }
+    support = 0;
+    for (std::size_t m = 0; m < neighbors.size (); ++m)
+      support += candidates_[m] > 0.0 &&
+                 std::abs (normal.dot (points.row (neighbors[m]).transpose ().cast<double> () - p)) <
+                     0.5 * residual;
+    return true;
+  }
+
+private:
+  std::vector<double> candidates_;  ///< the neighbours fitted first
+  Eigen::Vector3d normal;
+  double offset = 0.0;  ///< the plane's signed offset from p along the normal
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+
+  bool
+  solve (const PointMatrix &points, const Eigen::Vector3d &p,
+         const std::vector<VertexIndex> &neighbors, const std::vector<double> &weights)
+  {
+    double total = 0.0;
+    Eigen::Vector3d first = Eigen::Vector3d::Zero ();
+    Eigen::Matrix3d second = Eigen::Matrix3d::Zero ();
+    for (std::size_t m = 0; m < neighbors.size (); ++m)
+    {
+      const double w = weights[m];
+      const Eigen::Vector3d q = points.row (neighbors[m]).transpose ().cast<double> () - p;
+      total += w;
+      first += w * q;
+      second.noalias () += (w * q) * q.transpose ();
+    }
+    if (!(total > 0.0))
+      return false;
+    const Eigen::Vector3d mean = first / total;
+    eig.computeDirect (second / total - mean * mean.transpose ());
+    normal = eig.eigenvectors ().col (0);
+    offset = normal.dot (mean);
+    residual = std::abs (offset);
+    spread = std::sqrt (std::max (eig.eigenvalues ()(0), 0.0));
+    return true;
+  }
+};
+
+/** A vertex's planes for the normal-residual test (NaN where it has none). */
+struct PlaneResiduals
+{
+  float residual = std::numeric_limits<float>::quiet_NaN ();  ///< from the refitted plane
+  float spread = 0.0f;
+  float first_residual = 0.0f;  ///< from the plane of all the neighbours
+  float first_spread = 0.0f;
+  std::uint32_t support = 0;
+};
+
+/** The normal-residual test of radiusGraphDegrees (see RadiusDegrees::off_surface), on
+ *  the planes of the vertices in graph order. */
+void
+flagOffSurface (const RadiusSearch &search, const RadiusGraphParams &params,
+                const std::vector<PlaneResiduals> &planes, RadiusDegrees &out)
+{
+  constexpr double kMadToSigma = 1.0 / 0.6744897501960817;
+  std::vector<float> residuals (planes.size ());
+  for (std::size_t v = 0; v < planes.size (); ++v)
+    residuals[v] = planes[v].residual;
+  const double global = finiteMedian (std::move (residuals)) * kMadToSigma;
+  const double floor = kResidualFloor * search.graph.spacing;
+  const double s = std::isfinite (global) ? std::max (global, floor) : floor;
+  const double c = params.residual_multiplier;
+  out.residual_scale = s;
+  for (std::size_t v = 0; v < planes.size (); ++v)
+  {
+    const PlaneResiduals &plane = planes[v];
+    out.off_surface[search.graph.order[v]] =
+        plane.residual > c * std::max<double> (s, plane.spread) &&
+        plane.first_residual > 0.5 * c * std::max<double> (s, plane.first_spread) &&
+        plane.support <= kMaxSupport;
+  }
+}
+
 } // namespace
 
 PointGraph
@@ -524,6 +677,8 @@ buildRadiusGraph (const PointMatrix &points, const RadiusGraphParams &params,
 RadiusDegrees
 radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params)
 {
+  requireValid (std::isfinite (params.residual_multiplier) && params.residual_multiplier >= 0.0,
+                "residual_multiplier must be finite and >= 0");
   RadiusSearch search = prepareRadiusSearch (points, params);
   RadiusDegrees out;
   out.radius = search.radius;
@@ -532,16 +687,24 @@ radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params)
   const std::size_t n = search.graph.numVertices ();
   out.degree.assign (n, 0.0);
   out.mean_knn_distance.assign (n, 0.0f);
+  const bool residuals = params.residual_multiplier > 0.0;
+  if (residuals)
+    out.off_surface.assign (n, 0);
   if (n < 2)
     return out;
   for (std::size_t v = 0; v < n; ++v)
     out.mean_knn_distance[search.graph.order[v]] = static_cast<float> (search.mean_knn[v]);
   std::vector<double> ().swap (search.mean_knn);
+  // The planes of the normal-residual test per vertex (graph order).
+  const double floor = kResidualFloor * search.graph.spacing;
+  std::vector<PlaneResiduals> planes (residuals ? n : 0);
   detail::parallelFor (
       n, params.num_threads,
       [&] (std::size_t begin, std::size_t end) {
         std::vector<std::pair<VertexIndex, float>> scratch;
         std::vector<VertexIndex> neighbors;
+        std::vector<double> weights;
+        PlaneFit fit;
         for (std::size_t i = begin; i < end; ++i)
         {
           neighbors.clear ();
@@ -551,9 +714,20 @@ radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params)
           for (const VertexIndex j : neighbors)
             degree += gaussianWeight (squaredDistance (search.ordered, vi, j), out.sigma);
           out.degree[search.graph.order[i]] = degree;
+          weights.assign (neighbors.size (), 1.0);
+          if (residuals && fit.fit (search.ordered, vi, neighbors, weights, floor))
+          {
+            planes[i].residual = static_cast<float> (fit.residual);
+            planes[i].spread = static_cast<float> (fit.spread);
+            planes[i].first_residual = static_cast<float> (fit.first_residual);
+            planes[i].first_spread = static_cast<float> (fit.first_spread);
+            planes[i].support = static_cast<std::uint32_t> (fit.support);
+          }
         }
       },
       kBlock);
+  if (residuals)
+    flagOffSurface (search, params, planes, out);
   return out;
 }
 

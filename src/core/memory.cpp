@@ -36,7 +36,7 @@ constexpr PerPoint kGraph = {100.0, 20.0};
 constexpr PerPoint kTikhonov = {230.0, 15.0};
 constexpr PerPoint kTotalVariation = {210.0, 32.0};
 constexpr PerPoint kCholmod = {320.0, 240.0};
-constexpr double kRadiusDegreesPerPoint = 80.0;
+constexpr double kRadiusDegreesPerPoint = 100.0;
 
 std::size_t
 saturate (long double bytes)

@@ -109,6 +109,9 @@ struct RadiusGraphParams
   double sigma_factor = 0.70710678118654752;
   /** Neighbours used to estimate the spacing. Valid: >= 1. */
   int spacing_k = 10;
+  /** radiusGraphDegrees only: multiplier c of the normal-residual test, 0 (default) =
+   *  no test. See RadiusDegrees::off_surface. Valid: >= 0, finite. */
+  double residual_multiplier = 0.0;
   /** Worker threads; 0 = all hardware threads. The result does not depend on it. */
   int num_threads = 0;
 };
@@ -177,6 +180,24 @@ struct RadiusDegrees
   /** Each point's mean distance to its spacing_k nearest neighbours, in the caller's row
    *  order: how isolated it is, also where its degree is 0. */
   std::vector<float> mean_knn_distance;
+  /** With RadiusGraphParams::residual_multiplier c > 0: 1 for the points off the surface
+   *  their neighbours sample. Each point's epsilon-neighbours (itself excluded) are
+   *  fitted a plane (mean c_i, normal n_i the least-spread direction of their covariance),
+   *  refitted up to 4 times without the neighbours farther than 3 spreads from it (so that
+   *  a few outliers among them neither tilt it nor widen it). The point's residual
+   *  r_i = |n_i . (p_i - c_i)| is the normal component of the random-walk Laplacian of the
+   *  coordinates, ((I - D^-1 W) p)_i, with equal weights. The point is flagged when
+   *  - r_i > c x max(s, s_i), s_i the RMS distance of the neighbours to the final plane
+   *    and s the cloud's noise scale: the median residual / 0.6745 (a Gaussian's standard
+   *    deviation), at least 0.01 spacing;
+   *  - the same holds at c / 2 for the plane of all its neighbours: near a sharp edge or
+   *    corner, or a step, the neighbours are far off any plane and keep it;
+   *  - at most one neighbour is level with it (closer than r_i / 2 along n_i): a row or a
+   *    layer of points off the plane, as a depth camera's quantisation steps, is kept.
+   *  A point with fewer than 5 neighbours is never flagged. Empty when c = 0. */
+  std::vector<std::uint8_t> off_surface;
+  /** The global scale s of the residual test (0 without it). */
+  double residual_scale = 0.0;
 };
 
 /** \brief The weighted degree of every point in the epsilon-radius graph of `points`
