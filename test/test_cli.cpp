@@ -659,12 +659,13 @@ TEST (Cli, OutlierParametersReachTheFilter)
     all.insert (gone.begin (), gone.end ());
     EXPECT_EQ (all.size (), size (input));
   }
-  // A threshold of 0 removes nothing (there is no non-finite point): the removed file
-  // exists and is empty, in both formats.
+  // A threshold of 0 without the residual test removes nothing (there is no non-finite
+  // point): the removed file exists and is empty, in both formats.
   for (const std::string removed_file : {"removed.pcd", "removed.ply"})
   {
-    const std::vector<std::string> args = {
-        "in.pcd", "out.pcd", "-outliers", "degree_threshold=0", "-removed", removed_file};
+    const std::vector<std::string> args = {"in.pcd",        "out.pcd",
+                                           "-outliers",     "degree_threshold=0,residual_threshold=0",
+                                           "-removed",      removed_file};
     const ToolRun run = runTool (dir, args);
     ASSERT_EQ (run.code, 0) << describe (args, run);
     EXPECT_EQ (size (load (dir / "out.pcd")), size (input));
@@ -676,6 +677,42 @@ TEST (Cli, OutlierParametersReachTheFilter)
       pcl::io::loadPCDFile ((dir / removed_file).string (), removed);
     EXPECT_EQ (size (removed), 0u);
   }
+}
+
+TEST (Cli, ResidualThresholdReachesTheFilter)
+{
+  const fs::path dir = testFolder ();
+  const PCLPointCloud2 input = sphereWithOutliers ();
+  savePcd (dir / "in.pcd", input);
+  pcl::PointCloud<pcl::PointXYZ>::Ptr xyz (new pcl::PointCloud<pcl::PointXYZ>);
+  pcl::fromPCLPointCloud2 (input, *xyz);
+  // With no degree threshold, what goes is the residual test's alone (the outliers close
+  // to the sphere, and a multiplier of 1 takes a few surface points), as in the library.
+  pcl_graph_denoise::GraphDegreeOutlierRemoval<pcl::PointXYZ> filter;
+  filter.setInputCloud (xyz);
+  filter.setDegreeThreshold (0.0);
+  filter.setResidualThreshold (1.0);
+  pcl::Indices kept;
+  filter.filter (kept);
+  ASSERT_LT (kept.size (), xyz->size () - 5);
+  for (const std::vector<std::string> &step :
+       {std::vector<std::string>{"-outliers", "-degree_threshold", "0", "-residual_threshold", "1"},
+        {"-outliers", "degree_threshold=0,residual_threshold=1"}})
+  {
+    std::vector<std::string> args = {"in.pcd", "out.pcd"};
+    args.insert (args.end (), step.begin (), step.end ());
+    const ToolRun run = runTool (dir, args);
+    ASSERT_EQ (run.code, 0) << describe (args, run);
+    EXPECT_EQ (size (load (dir / "out.pcd")), kept.size ());
+    EXPECT_NE (run.err.find ("residual test 1 x noise scale"), std::string::npos) << run.err;
+  }
+  // Off: nothing goes, and the report does not mention it.
+  const ToolRun off = runTool (
+      dir, {"in.pcd", "out.pcd", "-outliers", "degree_threshold=0,residual_threshold=0"});
+  ASSERT_EQ (off.code, 0);
+  EXPECT_EQ (size (load (dir / "out.pcd")), size (input));
+  EXPECT_EQ (off.err.find ("residual test"), std::string::npos) << off.err;
+  EXPECT_EQ (runTool (dir, {"in.pcd", "out.pcd", "-outliers", "-residual_threshold", "-1"}).code, 2);
 }
 
 TEST (Cli, OutliersOnAnOrganisedCloud)

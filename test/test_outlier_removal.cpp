@@ -17,6 +17,7 @@
 #include <pcl/common/io.h>
 #include <pcl/filters/filter.h>
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <set>
@@ -266,8 +267,10 @@ TEST (OutlierRemoval, AbsoluteThresholdIsApplied)
   EXPECT_GT (tau, 0.0);
   filter.setDegreeThreshold (0.0);  // nothing has a degree below zero
   EXPECT_EQ (filter.getThresholdRule (), filter.ABSOLUTE_THRESHOLD);
+  filter.setResidualThreshold (0.0);  // and the residual test is off
   filter.filter (none);
   EXPECT_EQ (none.size (), cloud->size ());
+  filter.setResidualThreshold (4.0);
   filter.setDegreeThreshold (1e9);  // everything is below
   filter.filter (strict);
   EXPECT_TRUE (strict.empty ());
@@ -321,6 +324,89 @@ TEST (OutlierRemoval, OutlierFractionRemovesTheMostIsolatedAmongEqualDegrees)
   std::sort (removed.begin (), removed.end ());
   EXPECT_EQ (removed, (pcl::Indices{3, 4, 5}));
   EXPECT_EQ (filter.getUsedDegreeThreshold (), 0.0);
+}
+
+namespace {
+
+/** F1 score of `removed` as the outliers `truth` marks. */
+double
+f1Score (const pcl::Indices &removed, const std::vector<bool> &truth)
+{
+  std::size_t hits = 0;
+  for (auto i : removed)
+    hits += truth[i];
+  const auto outliers = static_cast<std::size_t> (std::count (truth.begin (), truth.end (), true));
+  return removed.empty () ? 0.0 : 2.0 * double (hits) / double (removed.size () + outliers);
+}
+
+} // namespace
+
+TEST (OutlierRemoval, ResidualTestRemovesTheOutliersCloseToTheSurface)
+{
+  // 20,000 points on a unit sphere, noise 0.2% of its radius, 5% uniform outliers in its
+  // bounding box: about a tenth of them land within two spacings of the surface, where
+  // their degree is an inlier's (and 2.5% within 4 noise levels, where nothing can tell).
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> (
+      pcl_graph_denoise::synthetic::noisySphere (20000, 1.0, 0.002, 41));
+  const std::vector<bool> truth = pcl_graph_denoise::synthetic::addUniformOutliers (*cloud, 0.05, 0.0, 42);
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter (true);
+  EXPECT_EQ (filter.getResidualThreshold (), 4.0);
+  filter.setInputCloud (cloud);
+  pcl::Indices kept;
+  filter.filter (kept);
+  const pcl::Indices with_test = *filter.getRemovedIndices ();
+  filter.setResidualThreshold (0.0);  // the degree test alone, as the paper
+  filter.filter (kept);
+  const pcl::Indices degree_only = *filter.getRemovedIndices ();
+  const double f1 = f1Score (with_test, truth), f1_degree = f1Score (degree_only, truth);
+  EXPECT_GE (f1, 0.97) << "the degree test alone: " << f1_degree;
+  EXPECT_GT (f1, f1_degree + 0.01);
+  // The residual test only adds to what the degree test removes.
+  const std::set<pcl::index_t> more (with_test.begin (), with_test.end ());
+  for (auto i : degree_only)
+    EXPECT_EQ (more.count (i), 1u) << i;
+  // What it adds are outliers off the surface by more than a few noise levels.
+  std::size_t added_inliers = 0;
+  for (auto i : with_test)
+    added_inliers += !truth[i];
+  EXPECT_LE (added_inliers, 10u);
+}
+
+TEST (OutlierRemoval, ResidualTestKeepsSharpEdgesAndCorners)
+{
+  // A noiseless and a nearly noiseless cube: every point of its edges and corners is off
+  // its neighbours' plane, as they all are; none is removed.
+  for (const double noise : {0.0, 0.0005})
+  {
+    auto cube = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> (
+        pcl_graph_denoise::synthetic::noisyCube (30000, noise, 43));
+    GraphDegreeOutlierRemoval<pcl::PointXYZ> filter (true);
+    filter.setInputCloud (cube);
+    pcl::Indices kept;
+    filter.filter (kept);
+    EXPECT_EQ (kept.size (), cube->size ()) << "noise " << noise;
+  }
+}
+
+TEST (OutlierRemoval, OutlierFractionIgnoresTheResidualTest)
+{
+  // The fraction rule removes exactly that count, by degree, whatever the residual test.
+  auto cloud = sphereWithOutliers<pcl::PointXYZ> ();
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter (true);
+  filter.setInputCloud (cloud);
+  filter.setOutlierFraction (0.05);
+  pcl::Indices a, b;
+  filter.filter (a);
+  filter.setResidualThreshold (1.0);  // would remove more points if it applied
+  filter.filter (b);
+  EXPECT_EQ (a, b);
+  // The automatic rule applies it.
+  filter.setAutomaticThresholdRatio (0.2);
+  pcl::Indices with_test, without;
+  filter.filter (with_test);
+  filter.setResidualThreshold (0.0);
+  filter.filter (without);
+  EXPECT_LT (with_test.size (), without.size ());
 }
 
 TEST (OutlierRemoval, UnitInvariantDefaults)
@@ -467,6 +553,9 @@ TEST (OutlierRemovalBadInput, InvalidParametersAreNamed)
       {[] (auto &f) { f.setOutlierFraction (1.5); }, "outlier fraction"},
       {[&] (auto &f) { f.setOutlierFraction (nan); }, "outlier fraction"},
       {[] (auto &f) { f.setAutomaticThresholdRatio (-2.0); }, "threshold ratio"},
+      {[] (auto &f) { f.setResidualThreshold (-1.0); }, "residual multiplier"},
+      {[&] (auto &f) { f.setResidualThreshold (nan); }, "residual multiplier"},
+      {[&] (auto &f) { f.setResidualThreshold (inf); }, "residual multiplier"},
       {[] (auto &f) { f.setNumberOfThreads (-1); }, "number of threads"},
   };
   for (const auto &c : cases)

@@ -68,6 +68,7 @@ const ParameterSpec parameter_specs[] = {
     {"threshold_ratio", OUTLIERS_STEP, ValueType::NON_NEGATIVE},
     {"degree_threshold", OUTLIERS_STEP, ValueType::NON_NEGATIVE},
     {"outlier_fraction", OUTLIERS_STEP, ValueType::FRACTION},
+    {"residual_threshold", OUTLIERS_STEP, ValueType::NON_NEGATIVE},
     {"keep_organized", OUTLIERS_STEP, ValueType::SWITCH},
     {"sigma", ALL_STEPS, ValueType::NON_NEGATIVE},
     {"k", SMOOTHING_STEPS, ValueType::AT_LEAST_ONE},
@@ -531,6 +532,7 @@ usage (const std::string &program)
   const std::string radius = derived (outliers.getRadiusSearch (), "3 x spacing, derived");
   const std::string outlier_sigma = derived (outliers.getSigma (), "the spacing, derived");
   const std::string ratio = text (outliers.getAutomaticThresholdRatio ());
+  const std::string residual = text (outliers.getResidualThreshold ());
   const std::string outlier_threads = threads (outliers.getNumberOfThreads ());
   const std::string k = both (tikhonov.getKSearch (), tv.getKSearch ());
   const std::string sigma = derived (tv.getSigma (), "mean k-NN distance / sqrt 2");
@@ -596,6 +598,9 @@ usage (const std::string &program)
     << "  -outlier_fraction X     remove the fraction X of lowest-degree points; in [0, 1]\n"
     << "                          (default: unused)\n"
     << "                          (one of these three rules per step)\n"
+    << "  -residual_threshold X   also remove points off their neighbours' plane by more than\n"
+    << "                          X x the noise; 0 = off (the paper's filter); >= 0; not with\n"
+    << "                          -outlier_fraction (default: " << residual << ")\n"
     << "  -keep_organized 0|1     1: removed points stay, with x, y, z set to NaN, so that\n"
     << "                          width x height survive (default: 0, they are dropped)\n"
     << "  -threads N              worker threads (default: " << outlier_threads << ")\n"

@@ -160,6 +160,8 @@ configure (pcl_graph_denoise::GraphDegreeOutlierRemoval<pcl::PointXYZ> &filter, 
       filter.setDegreeThreshold (v.number);
     else if (name == "outlier_fraction")
       filter.setOutlierFraction (v.number);
+    else if (name == "residual_threshold")
+      filter.setResidualThreshold (v.number);
     else if (name == "threads")
       filter.setNumberOfThreads (static_cast<int> (v.number));
     else if (name == "memory_limit")
@@ -286,7 +288,15 @@ removeOutliers (const Options &options, std::size_t s, const XyzFields &xyz,
   value ("%g", filter.getUsedSigma ());
   info (", degree threshold ");
   value ("%g", filter.getUsedDegreeThreshold ());
-  info (" (%s)\n", rule);
+  info (" (%s)", rule);
+  if (filter.getUsedResidualScale () > 0.0)
+  {
+    info (", residual test ");
+    value ("%g", filter.getResidualThreshold ());
+    info (" x noise scale ");
+    value ("%g", filter.getUsedResidualScale ());
+  }
+  info ("\n");
 }
 
 /** Smooths x, y, z of `cloud` with a GraphTikhonovSmoothing or GraphTVSmoothing. */

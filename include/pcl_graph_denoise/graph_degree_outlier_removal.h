@@ -131,6 +131,24 @@ public:
   inline double
   getAutomaticThresholdRatio () const { return automatic_ratio_; }
 
+  /** \brief Second test, on the points the degree test keeps: removes a point lying
+   *  off the surface its epsilon-neighbours sample by more than `multiplier` times the
+   *  noise. Its residual is its distance to the plane fitted to its neighbours (refitted
+   *  without the neighbours off it), i.e. the normal component of the random-walk
+   *  Laplacian (I - D^-1 W) of its coordinates; the noise is the larger of the cloud's
+   *  scale (the median residual / 0.6745, getUsedResidualScale()) and the plane's own
+   *  spread. Points on sharp edges, corners and steps, and points with another two level
+   *  with them off the plane (a layer, not an outlier), are kept (details:
+   *  core::RadiusDegrees::off_surface). It catches the outliers close to the surface, whose
+   *  degree is an inlier's. 0 turns it off (the paper's filter). Not applied with
+   *  setOutlierFraction(), which removes an exact count. Default 4. Valid: >= 0, finite. */
+  inline void
+  setResidualThreshold (double multiplier) { residual_multiplier_ = multiplier; }
+
+  /** \brief The residual multiplier set (0: no residual test). */
+  inline double
+  getResidualThreshold () const { return residual_multiplier_; }
+
   /** \brief The rule in force (set by the last of the three setters above). */
   inline ThresholdRule
   getThresholdRule () const { return rule_; }
@@ -174,6 +192,12 @@ public:
   inline double
   getUsedDegreeThreshold () const { return used_threshold_; }
 
+  /** \brief Noise scale of the residual test in the last filter() call, in the cloud's
+   *  units (points off their neighbours' plane by more than the multiplier times the
+   *  larger of it and their plane's own spread were removed); 0 when the test was off. */
+  inline double
+  getUsedResidualScale () const { return used_residual_scale_; }
+
 protected:
   /** \brief Filtered results are indexed by an indices array. */
   void
@@ -202,6 +226,7 @@ private:
   double degree_threshold_ = 0.0;
   double outlier_fraction_ = 0.0;
   double automatic_ratio_ = 0.2;
+  double residual_multiplier_ = 4.0;
   ThresholdRule rule_ = AUTOMATIC_THRESHOLD;
   int num_threads_ = 0;
   std::size_t memory_limit_ = 0;
@@ -209,6 +234,7 @@ private:
   double used_radius_ = 0.0;
   double used_sigma_ = 0.0;
   double used_threshold_ = 0.0;
+  double used_residual_scale_ = 0.0;
   bool failed_ = false;  ///< the last applyFilter (indices) reported an error
 };
 

@@ -58,6 +58,7 @@ void
 GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
 {
   failed_ = false;
+  used_residual_scale_ = 0.0;
   const std::string name = getClassName ();
   const auto invalid = [&] (const char *parameter, double value, const char *range) {
     PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] Invalid %s = %g: must be %s.\n",
@@ -74,6 +75,9 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
     return invalid ("outlier fraction (setOutlierFraction)", outlier_fraction_, "in [0, 1]");
   if (rule_ == AUTOMATIC_THRESHOLD && !(std::isfinite (automatic_ratio_) && automatic_ratio_ >= 0.0))
     return invalid ("threshold ratio (setAutomaticThresholdRatio)", automatic_ratio_,
+                    "finite and >= 0");
+  if (!(std::isfinite (residual_multiplier_) && residual_multiplier_ >= 0.0))
+    return invalid ("residual multiplier (setResidualThreshold)", residual_multiplier_,
                     "finite and >= 0");
   if (num_threads_ < 0)
     return invalid ("number of threads (setNumberOfThreads)", num_threads_, ">= 0");
@@ -106,6 +110,7 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
                name.c_str (), input_->size (), indices_->size ());
   std::vector<double> degree;
   std::vector<float> isolation;  // mean distance to the nearest neighbours, for ties
+  std::vector<std::uint8_t> off_surface;  // the residual test's verdict (empty without it)
   try
   {
     core::RadiusGraphParams params;
@@ -114,11 +119,15 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
     params.radius_factor = kRadiusFactor;
     params.sigma_factor = kSigmaFactor;
     params.num_threads = num_threads_;
+    if (rule_ != OUTLIER_FRACTION)
+      params.residual_multiplier = residual_multiplier_;
     core::RadiusDegrees result = core::radiusGraphDegrees (gathered.xyz, params);
     used_radius_ = result.radius;
     used_sigma_ = result.sigma;
     degree = std::move (result.degree);
     isolation = std::move (result.mean_knn_distance);
+    off_surface = std::move (result.off_surface);
+    used_residual_scale_ = result.residual_scale;
   }
   catch (const std::exception &e)
   {
@@ -159,7 +168,7 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
       used_threshold_ = automatic_ratio_ * quartile;
     }
     for (std::size_t r = 0; r < count; ++r)
-      inlier[r] = degree[r] >= used_threshold_;
+      inlier[r] = degree[r] >= used_threshold_ && (off_surface.empty () || !off_surface[r]);
   }
 
   // Walk the caller's index list in its order: kept points to `indices`, the rest

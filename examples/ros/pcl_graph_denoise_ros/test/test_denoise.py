@@ -353,6 +353,8 @@ class TestDenoiseNode(unittest.TestCase):
             ({"outliers": {"threshold_ratio": 0.3}, "outlier_fraction": 0.1}, [],
              "give at most one of threshold_ratio, degree_threshold and outlier_fraction"),
             ({"gamma": -1}, [], "~gamma: expected a number >= 0 or 'auto', got -1"),
+            ({"chain": ["outliers"], "outliers": {"residual_threshold": -1}}, [],
+             "~outliers/residual_threshold: expected a number >= 0 (0 = off), got -1"),
             ({"tikhonov": {"solver": "lu"}, "chain": ["tikhonov"]}, [],
              "~tikhonov/solver: expected 'cg' or 'cholmod', got 'lu'"),
         ]
