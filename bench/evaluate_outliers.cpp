@@ -250,7 +250,11 @@ outliers (const Options &options)
       std::ostringstream all;
       all << group.first << ", " << fraction * 100
           << "% outliers: ... and than every peer (ROR at its best radius, CGAL tuned included)";
-      findings.push_back ({all.str (), beats_all, false});
+      // Asserted where the quick subset leads by a clear margin too (the synthetic shapes,
+      // and the PU-GAN meshes at 5%); at 1% and 20% on the PU-GAN meshes the lead of the
+      // full set (0.004 and 0.001) is within what four meshes can show.
+      const bool asserted = group.first == "shapes" || fraction == 0.05;
+      findings.push_back ({all.str (), beats_all, asserted});
     }
   }
 
