@@ -21,6 +21,7 @@
 #include <pcl_graph_denoise/core/graph.h>
 #include <pcl_graph_denoise/graph_degree_outlier_removal.h>
 
+#include "point_counts.h"
 #include "synthetic.h"
 #include "timing.h"
 
@@ -235,11 +236,9 @@ int
 main (int argc, char **argv)
 {
   std::setvbuf (stdout, nullptr, _IOLBF, 0);  // progress shows as it comes
-  std::vector<std::size_t> sizes;
-  for (int a = 1; a < argc; ++a)
-    sizes.push_back (std::strtoull (argv[a], nullptr, 10));
+  const std::vector<std::size_t> sizes = pointCounts (argc, argv, {100000, 1000000});
   if (sizes.empty ())
-    sizes = {100000, 1000000};
+    return 2;
   const int threads = std::max (1u, std::thread::hardware_concurrency ());
   for (std::size_t n : sizes)
     benchGraph (n, threads);

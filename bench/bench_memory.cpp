@@ -26,6 +26,7 @@
 
 #include "peak_memory.h"
 #include "peers.h"
+#include "point_counts.h"
 #include "synthetic.h"
 
 #include <pcl/filters/statistical_outlier_removal.h>
@@ -129,11 +130,9 @@ run (std::size_t n)
 int
 main (int argc, char **argv)
 {
-  std::vector<std::size_t> sizes;
-  for (int i = 1; i < argc; ++i)
-    sizes.push_back (std::strtoull (argv[i], nullptr, 10));
+  const std::vector<std::size_t> sizes = pointCounts (argc, argv, {1000000});
   if (sizes.empty ())
-    sizes = {1000000};
+    return 2;
   for (const std::size_t n : sizes)
     run (n);
   return 0;

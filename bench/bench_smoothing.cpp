@@ -20,6 +20,7 @@
 #include <pcl_graph_denoise/graph_tikhonov_smoothing.h>
 #include <pcl_graph_denoise/graph_tv_smoothing.h>
 
+#include "point_counts.h"
 #include "synthetic.h"
 #include "timing.h"
 
@@ -143,11 +144,9 @@ int
 main (int argc, char **argv)
 {
   std::setvbuf (stdout, nullptr, _IOLBF, 0);  // progress shows as it comes
-  std::vector<std::size_t> sizes;
-  for (int a = 1; a < argc; ++a)
-    sizes.push_back (std::strtoull (argv[a], nullptr, 10));
+  const std::vector<std::size_t> sizes = pointCounts (argc, argv, {100000, 1000000});
   if (sizes.empty ())
-    sizes = {100000, 1000000};
+    return 2;
   const Distance to_sphere = synthetic::distanceToUnitSphere;
   const Distance to_cube = synthetic::distanceToCube;
   for (std::size_t n : sizes)

@@ -1,0 +1,22 @@
+# The benchmarks refuse an argument that is not a point count (exit 2 and a usage line)
+# instead of running on 0 points.
+#   cmake "-DBENCHES=<exe>;<exe>;..." -P run_bench_arguments_test.cmake
+if(NOT BENCHES)
+  message(FATAL_ERROR "usage: cmake \"-DBENCHES=<exe>;...\" -P run_bench_arguments_test.cmake")
+endif()
+foreach(bench ${BENCHES})
+  foreach(bad --help 0 1 -5 12abc 99999999999)
+    execute_process(COMMAND ${bench} ${bad} RESULT_VARIABLE code OUTPUT_VARIABLE out
+                    ERROR_VARIABLE err TIMEOUT 60)
+    if(NOT code EQUAL 2)
+      message(FATAL_ERROR "${bench} ${bad}: exit ${code}, expected 2\n${out}${err}")
+    endif()
+    if(NOT err MATCHES "usage: .*bad: '${bad}'")
+      message(FATAL_ERROR "${bench} ${bad}: no usage line naming the argument:\n${err}")
+    endif()
+    if(NOT out STREQUAL "")
+      message(FATAL_ERROR "${bench} ${bad}: ran anyway:\n${out}")
+    endif()
+  endforeach()
+endforeach()
+message(STATUS "every benchmark refused every bad point count")
