@@ -17,6 +17,9 @@ namespace pcl_graph_denoise {
  * sum of its weights: an outlier has few close neighbours and a low degree. Points
  * whose degree is below the threshold tau are removed; alternatively, a given
  * fraction of the lowest-degree points is removed (the paper's percentile rule).
+ * An outlier that lands within a couple of spacings of the surface has an inlier's
+ * degree; a second test, on by default, removes it by its distance to the plane of its
+ * neighbours (setResidualThreshold(); 0 gives the paper's filter exactly).
  *
  * Defaults are derived from the data, so that the same cloud in millimetres or in
  * metres gives the same result (see the setters). Points with a non-finite
