@@ -476,7 +476,7 @@ prepareRadiusSearch (const PointMatrix &points, const RadiusGraphParams &params)
   return search;
 }
 
-/** Fewest neighbours whose weighted plane gives a point a normal residual. */
+/** Fewest neighbours whose plane gives a point a normal residual. */
 constexpr std::size_t kMinPlaneNeighbours = 5;
 
 /** Most neighbours level with a point flagged off the surface: an outlier may have a
@@ -519,8 +519,9 @@ struct PlaneFit
    *  or the other side of an edge. */
   std::size_t support = 0;
 
-  /** Fits the neighbours whose weight is 1 (`weights` holds 1 or 0 per neighbour, and is
-   *  overwritten). False when fewer than kMinPlaneNeighbours of them remain. */
+  /** Fits the neighbours whose weight is 1, all with equal weight (`weights` holds 1 or 0
+   *  per neighbour, and is overwritten). False when fewer than kMinPlaneNeighbours of
+   *  them remain. */
   bool
   fit (const PointMatrix &points, VertexIndex self, const std::vector<VertexIndex> &neighbors,
        std::vector<double> &weights, double floor)
@@ -714,8 +715,10 @@ radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params)
           for (const VertexIndex j : neighbors)
             degree += gaussianWeight (squaredDistance (search.ordered, vi, j), out.sigma);
           out.degree[search.graph.order[i]] = degree;
+          if (!residuals)
+            continue;
           weights.assign (neighbors.size (), 1.0);
-          if (residuals && fit.fit (search.ordered, vi, neighbors, weights, floor))
+          if (fit.fit (search.ordered, vi, neighbors, weights, floor))
           {
             planes[i].residual = static_cast<float> (fit.residual);
             planes[i].spread = static_cast<float> (fit.spread);
