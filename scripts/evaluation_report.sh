@@ -274,6 +274,43 @@ third length must capture: the best multiple is ¼, the floor of the sweep, on t
 1.4–2.3× the best error). Detail the quadric cannot follow limits γ, density raises it, and a
 surface of constant curvature takes any γ: the rule needs a measure of the surface's detail.
 
+**The two inputs of the rule, corrected for noise (tried, not taken).** A second sweep (a
+one-off program, not kept: the default filters at ¼–64 × the derived γ in steps of 2, on the
+calibration set's eight shapes at 10,000 and 50,000 points and σ = 0.5, 1, 2, 3%, 64 clouds;
+error over the best of the sweep, interpolated between multiples, geometric mean) measured how
+far each input of the rule is off and what correcting it buys:
+- The k-NN spacing grows with the noise: against the surface's own spacing (1/√density,
+  from the median count m of points within R = 3 k-NN spacings, s = √(π(R² − 1.45σ²)/m), within
+  1% of the truth on noisy planes up to σ = 3s) it is 1.3–1.4× at low noise and up to 2.4× at
+  50,000 points and 3%.
+- The two-ring noise estimate saturates when the noise nears the spacing. On noisy planes
+  (160,000 points) σ̂/σ is 0.98 at σ = s/2, 0.96 at σ = s, 0.81 at 2s, 0.65 at 3s and 0.43 at
+  6s, the same function of σ/s as on the meshes (0.63–0.76 at 50,000 points and 3%). Inverting
+  that table (with the corrected spacing, iterated) brings σ̂ to 0.98–1.17 σ there. Plane fits
+  over a ball instead (R = 3 k-NN spacings, or 4σ̂ iterated) reach only 0.8–0.9 σ at 50,000
+  points and 3% and give 2–6 σ on the casting, whose thin walls they straddle.
+- With both corrections and the best refitted power law γ·(mean degree) ∝ (σ̂/s)^b, the error
+  over the best goes from 1.199 to 1.177 for Tikhonov and from 1.158 to 1.110 for TV (the
+  meshes alone, without the sphere and the cube: 1.101 → 1.081 and 1.130 → 1.075). The gain is
+  at 50,000 points (Tikhonov 1.268 → 1.201, TV 1.248 → 1.099) and is paid at 10,000 (1.133 →
+  1.153, 1.075 → 1.122), so it was not taken.
+- With the true σ in place of σ̂ the same fit reaches 1.047 (Tikhonov) and 1.040 (TV) on the
+  meshes. What is left to gain is in the noise estimate at low noise on detailed surfaces,
+  where the two-ring plane residual counts detail as noise (σ̂ = 3.9 σ on the casting, 2.1 σ on
+  the dragon, 1.3–1.4 σ on the joint and part-Lp at 10,000 points and 0.5%), more than in
+  the density term.
+- The most promising lead, not yet in the filters: the plane fit over the one ring (the vertex
+  and its k neighbours) instead of two, corrected by its own noisy-plane table (σ̂/σ = 0.78 at
+  σ = s/2, 0.63 at s, 0.42 at 2s, 0.32 at 3s; steeper, but it is fitted over a smaller patch).
+  On the calibration meshes it gives 1.0–1.3 σ at every size and level but one (the casting at
+  10,000 points and 0.5%: 2.2 σ, against 4.0 σ for the two rings under the same correction).
+  Emulated on the sweep above (its σ/σ ratios, measured on clouds of the same shapes, sizes and
+  levels with other seeds, applied to the sweep's clouds; the filters' own use of σ̂ in the
+  quadric fit not replayed), the refitted power law lands at 1.158 (Tikhonov) and 1.092 (TV),
+  and at 1.063 and 1.055 on the meshes alone (10,000 points: 1.064 and 1.060; 50,000 points:
+  1.062 and 1.050). Building it into `estimateNoiseLevel`, refitting the rule on this set and
+  re-running the evaluation is the next step.
+
 **Choosing γ by a risk estimate** (`setGammaSelection (GammaSelection::RISK_ESTIMATE)`,
 `-gamma risk`; `core::selectGammaByRisk`). Instead of a measure of detail, the filter can
 measure its own error without ground truth. For Gaussian noise of level σ per axis, Stein's
