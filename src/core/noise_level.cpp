@@ -4,56 +4,181 @@
  */
 #include <pcl_graph_denoise/core/noise_level.h>
 
-#include "two_ring.h"
+#include "neighbor_search.h"
 #include "parallel.h"
 
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace pcl_graph_denoise {
 namespace core {
 
-double
-estimateNoiseLevel (const PointGraph &graph, const Signal3 &points, int num_threads)
+namespace {
+
+constexpr int kNeighbours = 10;          // the one ring of the default k-NN graph
+constexpr std::size_t kSamples = 20000;  // a median needs no more
+constexpr double kBallRadius = 4.0;      // in mean k-NN distances
+
+/** Median residual / noise of the 10-neighbour plane fit on noisy planes (160,000
+ *  points, three seeds; bench/calibrate_gamma --noise-table), against noise / spacing. */
+struct Saturation
 {
-  const std::size_t n = graph.numVertices ();
-  if (static_cast<std::size_t> (points.rows ()) != n)
-    throw std::invalid_argument ("estimateNoiseLevel: points of the wrong size");
-  // A median needs no more than a sample: every stride-th vertex, at most kSamples of
-  // them, spread over the cloud by the graph's spatial order.
-  constexpr std::size_t kSamples = 20000;
+  double noise_over_spacing;
+  double residual_over_spacing;
+};
+constexpr std::array<Saturation, 15> kSaturation = {{
+    {0.0, 0.0},
+    {0.1, 0.0815},
+    {0.25, 0.1989},
+    {0.5, 0.3576},
+    {0.75, 0.4580},
+    {1.0, 0.5259},
+    {1.25, 0.5772},
+    {1.5, 0.6189},
+    {2.0, 0.6890},
+    {2.5, 0.7479},
+    {3.0, 0.7990},
+    {4.0, 0.8834},
+    {5.0, 0.9562},
+    {6.0, 1.0223},
+    {8.0, 1.1329},
+}};
+
+/** noise / spacing for a median residual / spacing, by the table (linear between its
+ *  rows, capped at its last row). */
+double
+noiseOverSpacing (double residual_over_spacing)
+{
+  for (std::size_t i = 1; i < kSaturation.size (); ++i)
+  {
+    const Saturation &a = kSaturation[i - 1], &b = kSaturation[i];
+    if (residual_over_spacing <= b.residual_over_spacing)
+      return a.noise_over_spacing + (b.noise_over_spacing - a.noise_over_spacing) *
+                                        (residual_over_spacing - a.residual_over_spacing) /
+                                        (b.residual_over_spacing - a.residual_over_spacing);
+  }
+  return kSaturation.back ().noise_over_spacing;
+}
+
+double
+median (std::vector<double> values)
+{
+  const std::size_t mid = values.size () / 2;
+  std::nth_element (values.begin (), values.begin () + mid, values.end ());
+  return values[mid];
+}
+
+} // namespace
+
+NoiseEstimate
+estimateNoise (const Signal3 &points, int num_threads)
+{
+  NoiseEstimate estimate;
+  const std::size_t n = static_cast<std::size_t> (points.rows ());
+  if (n < 4)
+    return estimate;
+  const PointMatrix cloud = points.cast<float> ();
+  const detail::KdTree tree (cloud);
+  const int k = static_cast<int> (std::min<std::size_t> (kNeighbours, n - 1));
   const std::size_t stride = std::max<std::size_t> (1, n / kSamples);
   const std::size_t samples = (n + stride - 1) / stride;
-  std::vector<double> deviation (samples, -1.0);
+
+  // The plane through each sampled point and its neighbours, and their mean distance.
+  std::vector<double> residual (samples), mean_distance (samples);
   detail::parallelFor (samples, num_threads, [&] (std::size_t begin, std::size_t end) {
-    std::vector<VertexIndex> ring;
-    detail::TwoRing two_ring;
+    std::vector<VertexIndex> idx (k), scratch_idx;
+    std::vector<float> d2 (k), scratch_d2;
     for (std::size_t sample = begin; sample < end; ++sample)
     {
-      const std::size_t i = sample * stride;
-      // The vertex, its neighbours and theirs: wide enough that noise comparable to
-      // the spacing does not hide in the choice of the neighbourhood.
-      two_ring.collect (graph, i, ring);
-      const double m = double (ring.size ());
-      if (m < 5.0)
-        continue;  // a plane through fewer than five points says nothing of the noise
-      const Eigen::Matrix3d covariance = detail::ringCovariance (points, ring, i);
+      const auto i = static_cast<VertexIndex> (sample * stride);
+      tree.nearestOthers (i, k, idx.data (), d2.data (), scratch_idx, scratch_d2);
+      Eigen::Vector3d centre = points.row (i).transpose ();
+      double distance = 0.0;
+      for (int m = 0; m < k; ++m)
+      {
+        centre += points.row (idx[m]).transpose ();
+        distance += std::sqrt (double (d2[m]));
+      }
+      centre /= double (k + 1);
+      Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero ();
+      const auto add = [&] (VertexIndex v) {
+        const Eigen::Vector3d d = points.row (v).transpose () - centre;
+        covariance += d * d.transpose ();
+      };
+      add (i);
+      for (int m = 0; m < k; ++m)
+        add (idx[m]);
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-      eig.computeDirect (covariance, Eigen::EigenvaluesOnly);
-      const double smallest = std::max (0.0, eig.eigenvalues () (0));
-      deviation[sample] = std::sqrt (smallest * m / (m - 3.0));
+      eig.computeDirect (covariance / double (k + 1), Eigen::EigenvaluesOnly);
+      residual[sample] = std::sqrt (std::max (0.0, eig.eigenvalues () (0)));
+      mean_distance[sample] = distance / k;
     }
   });
-  deviation.erase (std::remove (deviation.begin (), deviation.end (), -1.0), deviation.end ());
-  if (deviation.empty ())
-    return 0.0;
-  const std::size_t mid = deviation.size () / 2;
-  std::nth_element (deviation.begin (), deviation.begin () + mid, deviation.end ());
-  return deviation[mid];
+  estimate.one_ring = median (residual);
+  double knn_spacing = 0.0;
+  for (double d : mean_distance)
+    knn_spacing += d;
+  knn_spacing /= double (samples);
+
+  // The level at a noise small against the spacing, the fallback when no spacing can be
+  // measured (all points on one spot).
+  const double low_noise_ratio = kSaturation[1].residual_over_spacing / kSaturation[1].noise_over_spacing;
+  estimate.level = estimate.one_ring / low_noise_ratio;
+  const double radius = kBallRadius * knn_spacing;
+  if (!(radius > 0.0) || !std::isfinite (radius))
+    return estimate;
+
+  std::vector<double> count (samples);
+  detail::parallelFor (samples, num_threads, [&] (std::size_t begin, std::size_t end) {
+    std::vector<VertexIndex> within;
+    std::vector<std::pair<VertexIndex, float>> scratch;
+    for (std::size_t sample = begin; sample < end; ++sample)
+    {
+      within.clear ();
+      tree.othersWithin (static_cast<VertexIndex> (sample * stride), static_cast<float> (radius),
+                         within, scratch);
+      count[sample] = double (within.size () + 1);
+    }
+  });
+  const double m = median (count);
+  // The level solves level = ratio (one_ring / spacing (level)) x spacing (level). The
+  // right side minus the left is positive at 0 and may cross zero more than once where
+  // the table is flat (the spacing shrinks as the level grows): the first crossing, found
+  // by a scan and then bisected, is the one continuous with low noise.
+  const auto spacingAt = [&] (double level) {
+    return std::sqrt (M_PI * std::max (radius * radius - 1.45 * level * level, 0.25 * radius * radius) / m);
+  };
+  const auto excess = [&] (double level) {
+    const double s = spacingAt (level);
+    return noiseOverSpacing (estimate.one_ring / s) * s - level;
+  };
+  const double top = radius * std::sqrt (0.75 / 1.45);  // the area's floor
+  constexpr int kScan = 256;
+  double low = top, high = top;
+  for (int step = 1; step <= kScan; ++step)
+  {
+    const double at = top * step / kScan;
+    if (excess (at) <= 0.0)
+    {
+      low = top * (step - 1) / kScan, high = at;
+      break;
+    }
+  }
+  for (int step = 0; step < 60 && high - low > 1e-9 * high; ++step)
+  {
+    const double mid = 0.5 * (low + high);
+    (excess (mid) > 0.0 ? low : high) = mid;
+  }
+  const double level = 0.5 * (low + high);
+  const double spacing = spacingAt (level);
+  estimate.level = level;
+  estimate.spacing = spacing;
+  return estimate;
 }
 
 } // namespace core
