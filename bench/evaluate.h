@@ -28,6 +28,7 @@ struct Options
   std::string data;        ///< the shared data folder (../shared/data)
   std::vector<std::size_t> sizes;  ///< pugan: cloud sizes (empty = the section's own)
   bool wlop = false;               ///< pugan: also run WLOP (slow: ~16 s per 10,000 points)
+  bool risk = true;                ///< pugan, bunny: also ours with the risk-estimate gamma
 };
 
 int

@@ -76,6 +76,7 @@ bunny (const Options &options)
                     : std::vector<std::string>{"bun000.ply", "bun045.ply", "bun090.ply"};
   MethodOptions method_options;
   method_options.wlop = false;  // about 2 minutes per scan here
+  method_options.risk_gamma = options.risk;
   if (options.quick)
   {
     method_options.bilateral_k = {60};

@@ -46,10 +46,11 @@ struct Score
  *  its Chamfer distance to the clean points (both normalised by the clean cloud). */
 std::vector<Score>
 runCase (const Cloud &clean, const Cloud::Ptr &noisy, const MeshDistance &mesh, bool quick, bool wlop,
-         const std::string &save_prefix)
+         bool risk, const std::string &save_prefix)
 {
   MethodOptions options;
   options.wlop = wlop;
+  options.risk_gamma = risk;
   if (quick)
   {
     options.bilateral_k = {60};
@@ -167,7 +168,8 @@ pugan (const Options &options)
                                      ? options.out + "/pugan_fandisk_10000_2_"
                                      : std::string ();
         const auto scores =
-            runCase (clean, noisy, distance, options.quick, options.wlop && !options.quick, save);
+            runCase (clean, noisy, distance, options.quick, options.wlop && !options.quick,
+                     options.risk, save);
         std::printf ("%-12s %5zu %.0f%%: P2M x 1e4", name.c_str (), n, noise * 100);
         for (std::size_t m = 0; m < methods.size (); ++m)
         {

@@ -38,12 +38,6 @@ toMatrix (const synthetic::Cloud &cloud)
   return m;
 }
 
-Signal3
-toSignal (const synthetic::Cloud &cloud)
-{
-  return toMatrix (cloud).cast<double> ();
-}
-
 /** The points of a graph's cloud in its vertex order. */
 Signal3
 vertexSignal (const PointGraph &g, const PointMatrix &points)
@@ -288,37 +282,47 @@ TEST (TotalVariationSolver, RejectsInvalidInput)
   EXPECT_THROW (solveTotalVariation (p.graph, p.f, 1.0, bad), std::invalid_argument);
 }
 
+/** estimateNoise on the default k-NN graph of a cloud. */
+NoiseEstimate
+noiseOf (const PointMatrix &points, int num_threads = 0)
+{
+  const PointGraph g = buildKnnGraph (points);
+  return estimateNoise (g, vertexSignal (g, points), num_threads);
+}
+
 TEST (NoiseLevel, RecoversTheNoiseAndTheSpacingOfSmoothSurfaces)
 {
-  // From a tenth of the spacing to about three spacings, where the neighbours of a point
-  // come from inside the noise and the plane fit's residual alone falls to 0.8 of it.
+  // From a tenth of the spacing to 2.5 spacings, where the neighbours of a point come
+  // from inside the noise and the plane fit's residual alone falls to 0.7 of it.
   const double plane_spacing = 2.0 / std::sqrt (20000.0);  // 20,000 points on a 2 x 2 square
   const double sphere_spacing = std::sqrt (4.0 * M_PI / 50000.0);
   for (double noise : {0.002, 0.005, 0.01, 0.02, 0.04})
   {
-    const NoiseEstimate p = estimateNoise (toSignal (synthetic::noisyPlane (20000, noise, 4)));
+    const NoiseEstimate p = noiseOf (toMatrix (synthetic::noisyPlane (20000, noise, 4)));
     EXPECT_NEAR (p.level, noise, 0.1 * noise) << "plane, noise " << noise;
     EXPECT_NEAR (p.spacing, plane_spacing, 0.05 * plane_spacing) << "plane, noise " << noise;
-    const NoiseEstimate s = estimateNoise (toSignal (synthetic::noisySphere (50000, 1.0, noise, 5)));
+    const NoiseEstimate s = noiseOf (toMatrix (synthetic::noisySphere (50000, 1.0, noise, 5)));
     EXPECT_NEAR (s.level, noise, 0.1 * noise) << "sphere, noise " << noise;
     EXPECT_NEAR (s.spacing, sphere_spacing, 0.05 * sphere_spacing) << "sphere, noise " << noise;
     if (noise == 0.04)  // 2.5 spacings: the residual alone is far short
-      EXPECT_LT (s.one_ring, 0.8 * noise);
+      EXPECT_LT (s.two_ring, 0.8 * noise);
   }
   // Scale invariance: the same cloud in millimetres; and thread-count independence.
-  const Signal3 m = toSignal (synthetic::noisySphere (20000, 1.0, 0.01, 6));
-  const NoiseEstimate a = estimateNoise (m), b = estimateNoise (1000.0 * m);
+  const PointMatrix m = toMatrix (synthetic::noisySphere (20000, 1.0, 0.01, 6));
+  const NoiseEstimate a = noiseOf (m), b = noiseOf (1000.0f * m);
   EXPECT_NEAR (b.level, 1000.0 * a.level, 1e-3 * b.level);
   EXPECT_NEAR (b.spacing, 1000.0 * a.spacing, 1e-3 * b.spacing);
-  const NoiseEstimate one = estimateNoise (m, 1), two = estimateNoise (m, 2);
+  const NoiseEstimate one = noiseOf (m, 1), two = noiseOf (m, 2);
   EXPECT_EQ (one.level, two.level);
   EXPECT_EQ (one.spacing, two.spacing);
-  // Too few points, or all on one spot: no estimate, no crash.
-  EXPECT_EQ (estimateNoise (Signal3::Zero (1, 3)).level, 0.0);
-  EXPECT_EQ (estimateNoise (Signal3::Zero (3, 3)).level, 0.0);
-  const NoiseEstimate spot = estimateNoise (Signal3::Ones (100, 3));
+  // No edges, or all points on one spot: no estimate, no crash; sizes must agree.
+  EXPECT_EQ (noiseOf (PointMatrix::Zero (1, 3)).level, 0.0);
+  EXPECT_EQ (noiseOf (PointMatrix::Zero (3, 3)).level, 0.0);
+  const NoiseEstimate spot = noiseOf (PointMatrix::Ones (100, 3));
   EXPECT_EQ (spot.level, 0.0);
   EXPECT_EQ (spot.spacing, 0.0);
+  const PointGraph g = buildKnnGraph (m);
+  EXPECT_THROW (estimateNoise (g, Signal3::Zero (10, 3)), std::invalid_argument);
 }
 
 TEST (DefaultGamma, IsUnitInvariantAndGrowsWithNoise)

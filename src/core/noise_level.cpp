@@ -6,12 +6,14 @@
 
 #include "neighbor_search.h"
 #include "parallel.h"
+#include "two_ring.h"
 
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -20,12 +22,12 @@ namespace core {
 
 namespace {
 
-constexpr int kNeighbours = 10;          // the one ring of the default k-NN graph
+constexpr int kNeighbours = 10;          // for the mean k-NN distance behind the ball
 constexpr std::size_t kSamples = 20000;  // a median needs no more
 constexpr double kBallRadius = 4.0;      // in mean k-NN distances
 
-/** Median residual / noise of the 10-neighbour plane fit on noisy planes (160,000
- *  points, three seeds; bench/calibrate_gamma --noise-table), against noise / spacing. */
+/** Median two-ring residual / spacing on noisy planes (160,000 points, k = 10, three
+ *  seeds; bench/calibrate_gamma --noise-table), against noise / spacing. */
 struct Saturation
 {
   double noise_over_spacing;
@@ -33,20 +35,20 @@ struct Saturation
 };
 constexpr std::array<Saturation, 15> kSaturation = {{
     {0.0, 0.0},
-    {0.1, 0.0815},
-    {0.25, 0.1989},
-    {0.5, 0.3576},
-    {0.75, 0.4580},
-    {1.0, 0.5259},
-    {1.25, 0.5772},
-    {1.5, 0.6189},
-    {2.0, 0.6890},
-    {2.5, 0.7479},
-    {3.0, 0.7990},
-    {4.0, 0.8834},
-    {5.0, 0.9562},
-    {6.0, 1.0223},
-    {8.0, 1.1329},
+    {0.1, 0.0989},
+    {0.25, 0.2463},
+    {0.5, 0.4890},
+    {0.75, 0.7301},
+    {1.0, 0.9596},
+    {1.25, 1.1688},
+    {1.5, 1.3457},
+    {2.0, 1.6123},
+    {2.5, 1.8002},
+    {3.0, 1.9556},
+    {4.0, 2.1993},
+    {5.0, 2.3932},
+    {6.0, 2.5473},
+    {8.0, 2.7940},
 }};
 
 /** noise / spacing for a median residual / spacing, by the table (linear between its
@@ -76,11 +78,13 @@ median (std::vector<double> values)
 } // namespace
 
 NoiseEstimate
-estimateNoise (const Signal3 &points, int num_threads)
+estimateNoise (const PointGraph &graph, const Signal3 &points, int num_threads)
 {
   NoiseEstimate estimate;
-  const std::size_t n = static_cast<std::size_t> (points.rows ());
-  if (n < 4)
+  const std::size_t n = graph.numVertices ();
+  if (static_cast<std::size_t> (points.rows ()) != n)
+    throw std::invalid_argument ("estimateNoise: points of the wrong size");
+  if (n < 4 || graph.numEntries () == 0)
     return estimate;
   const PointMatrix cloud = points.cast<float> ();
   const detail::KdTree tree (cloud);
@@ -88,47 +92,44 @@ estimateNoise (const Signal3 &points, int num_threads)
   const std::size_t stride = std::max<std::size_t> (1, n / kSamples);
   const std::size_t samples = (n + stride - 1) / stride;
 
-  // The plane through each sampled point and its neighbours, and their mean distance.
-  std::vector<double> residual (samples), mean_distance (samples);
+  // The plane through each sampled vertex, its neighbours and theirs, and the vertex's
+  // mean distance to its 10 nearest points.
+  std::vector<double> residual (samples, -1.0), mean_distance (samples);
   detail::parallelFor (samples, num_threads, [&] (std::size_t begin, std::size_t end) {
-    std::vector<VertexIndex> idx (k), scratch_idx;
+    std::vector<VertexIndex> ring, idx (k), scratch_idx;
     std::vector<float> d2 (k), scratch_d2;
+    detail::TwoRing two_ring;
     for (std::size_t sample = begin; sample < end; ++sample)
     {
-      const auto i = static_cast<VertexIndex> (sample * stride);
-      tree.nearestOthers (i, k, idx.data (), d2.data (), scratch_idx, scratch_d2);
-      Eigen::Vector3d centre = points.row (i).transpose ();
+      const std::size_t i = sample * stride;
+      tree.nearestOthers (static_cast<VertexIndex> (i), k, idx.data (), d2.data (), scratch_idx, scratch_d2);
       double distance = 0.0;
       for (int m = 0; m < k; ++m)
-      {
-        centre += points.row (idx[m]).transpose ();
         distance += std::sqrt (double (d2[m]));
-      }
-      centre /= double (k + 1);
-      Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero ();
-      const auto add = [&] (VertexIndex v) {
-        const Eigen::Vector3d d = points.row (v).transpose () - centre;
-        covariance += d * d.transpose ();
-      };
-      add (i);
-      for (int m = 0; m < k; ++m)
-        add (idx[m]);
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-      eig.computeDirect (covariance / double (k + 1), Eigen::EigenvaluesOnly);
-      residual[sample] = std::sqrt (std::max (0.0, eig.eigenvalues () (0)));
       mean_distance[sample] = distance / k;
+      two_ring.collect (graph, i, ring);
+      const double m = double (ring.size ());
+      if (m < 5.0)
+        continue;  // a plane through fewer than five points says nothing of the noise
+      const Eigen::Matrix3d covariance = detail::ringCovariance (points, ring, i);
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+      eig.computeDirect (covariance, Eigen::EigenvaluesOnly);
+      residual[sample] = std::sqrt (std::max (0.0, eig.eigenvalues () (0)) * m / (m - 3.0));
     }
   });
-  estimate.one_ring = median (residual);
+  residual.erase (std::remove (residual.begin (), residual.end (), -1.0), residual.end ());
+  if (residual.empty ())
+    return estimate;
+  estimate.two_ring = median (residual);
   double knn_spacing = 0.0;
   for (double d : mean_distance)
     knn_spacing += d;
   knn_spacing /= double (samples);
 
-  // The level at a noise small against the spacing, the fallback when no spacing can be
-  // measured (all points on one spot).
+  // The level at a noise small against the spacing: the fallback when no spacing can be
+  // measured.
   const double low_noise_ratio = kSaturation[1].residual_over_spacing / kSaturation[1].noise_over_spacing;
-  estimate.level = estimate.one_ring / low_noise_ratio;
+  estimate.level = estimate.two_ring / low_noise_ratio;
   const double radius = kBallRadius * knn_spacing;
   if (!(radius > 0.0) || !std::isfinite (radius))
     return estimate;
@@ -146,7 +147,7 @@ estimateNoise (const Signal3 &points, int num_threads)
     }
   });
   const double m = median (count);
-  // The level solves level = ratio (one_ring / spacing (level)) x spacing (level). The
+  // The level solves level = ratio (two_ring / spacing (level)) x spacing (level). The
   // right side minus the left is positive at 0 and may cross zero more than once where
   // the table is flat (the spacing shrinks as the level grows): the first crossing, found
   // by a scan and then bisected, is the one continuous with low noise.
@@ -155,7 +156,7 @@ estimateNoise (const Signal3 &points, int num_threads)
   };
   const auto excess = [&] (double level) {
     const double s = spacingAt (level);
-    return noiseOverSpacing (estimate.one_ring / s) * s - level;
+    return noiseOverSpacing (estimate.two_ring / s) * s - level;
   };
   const double top = radius * std::sqrt (0.75 / 1.45);  // the area's floor
   constexpr int kScan = 256;

@@ -200,7 +200,7 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
     if (automatic_gamma_ || quadric)
     {
       // Re-estimated on each pass: the noise left after the previous one.
-      noise = core::estimateNoise (f, num_threads_).level;
+      noise = core::estimateNoise (graph, f, num_threads_).level;
       if (pass == 0)
         estimated_noise_ = noise;
     }
