@@ -418,7 +418,7 @@ const char *const every_option =
     "-outliers -tikhonov -tv -radius -sigma -threshold_ratio -degree_threshold -outlier_fraction "
     "-keep_organized -threads -k -gamma -graph_iterations -normal_displacement -local_surface "
     "-shrinkage_correction -tolerance -max_iterations -solver -norm -memory_limit -removed -ascii -q "
-    "-temporal -smoother -k2 -window";
+    "-temporal -smoother -k2 -window -motion_compensation";
 
 }  // namespace
 
@@ -1089,6 +1089,39 @@ TEST (Cli, TemporalStepWritesEveryFrameToTheFolderAsTheLibraryDoes)
       EXPECT_GT (moved, origin.size () / 2);
     }
   }
+  // Without motion compensation: the library's result with it off, and not the default's.
+  {
+    std::vector<std::string> args = names;
+    fs::create_directories (dir / "raw");
+    args.insert (args.end (), {"raw", "-temporal", "motion_compensation=0"});
+    const ToolRun run = runTool (dir, args);
+    ASSERT_EQ (run.code, 0) << describe (args, run);
+    EXPECT_NE (run.err.find ("motion compensation off"), std::string::npos) << run.err;
+    pcl_graph_denoise::GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+    sequence.setMotionCompensation (false);
+    std::vector<pcl::PointCloud<pcl::PointXYZ>::Ptr> xyz, expected;
+    for (const auto &frame : frames)
+    {
+      xyz.emplace_back (new pcl::PointCloud<pcl::PointXYZ>);
+      pcl::fromPCLPointCloud2 (frame, *xyz.back ());
+    }
+    ASSERT_TRUE (sequence.filter (xyz, expected));
+    std::vector<pcl::PointCloud<pcl::PointXYZ>::Ptr> compensated;
+    sequence.setMotionCompensation (true);
+    ASSERT_TRUE (sequence.filter (xyz, compensated));
+    for (std::size_t t = 0; t < 3; ++t)
+    {
+      const PCLPointCloud2 output = load (dir / "raw" / names[t]);
+      ASSERT_EQ (size (output), expected[t]->size ());
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < size (output); ++i)
+      {
+        EXPECT_EQ (coordinate (output, i, "x"), (*expected[t])[i].x) << "frame " << t << ", point " << i;
+        differ += coordinate (output, i, "x") != (*compensated[t])[i].x;
+      }
+      EXPECT_GT (differ, 0u) << "frame " << t;
+    }
+  }
   // k2 = 0: each frame is the static filter's result (-tikhonov on the file alone).
   std::vector<std::string> args = names;
   args.insert (args.end (), {"alone", "-temporal", "k2=0"});
@@ -1181,6 +1214,8 @@ TEST (Cli, TemporalCommandLinesAreChecked)
       {{"f0.pcd", "f1.pcd", "out", "-temporal", "-norm", "anisotropic"}, "does not apply"},
       {{"f0.pcd", "f1.pcd", "out", "-temporal", "smoother=tv,solver=cholmod"}, "does not apply"},
       {{"f0.pcd", "out.pcd", "-tv", "-k2", "3"}, "only to -temporal"},
+      {{"f0.pcd", "out.pcd", "-tv", "-motion_compensation", "0"}, "only to -temporal"},
+      {{"f0.pcd", "f1.pcd", "out", "-temporal", "-motion_compensation", "2"}, "0 or 1"},
   };
   for (const auto &[args, message] : bad)
   {

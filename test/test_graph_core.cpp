@@ -8,6 +8,8 @@
 #include <pcl_graph_denoise/core/normals.h>
 #include <pcl_graph_denoise/core/operators.h>
 
+#include "synthetic.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -22,6 +24,7 @@
 #include <stdexcept>
 
 using namespace pcl_graph_denoise::core;
+namespace synthetic = pcl_graph_denoise::synthetic;
 
 namespace {
 
@@ -955,4 +958,171 @@ TEST (Normals, QuadricIsNotExtrapolatedFromACollapsedPatch)
                                    ((f.row (v) - x.row (v)).norm () + 3.0 * noise));
     EXPECT_LE (worst, 0.0) << "noise level " << level;
   }
+}
+
+namespace {
+
+PointMatrix
+matrixOf (const pcl::PointCloud<pcl::PointXYZ> &cloud, const Eigen::Isometry3d &pose =
+                                                          Eigen::Isometry3d::Identity ())
+{
+  PointMatrix m (static_cast<Eigen::Index> (cloud.size ()), 3);
+  for (std::size_t i = 0; i < cloud.size (); ++i)
+    m.row (static_cast<Eigen::Index> (i)) =
+        (pose * cloud[i].getVector3fMap ().cast<double> ()).cast<float> ().transpose ();
+  return m;
+}
+
+/** Mean of `distance` over the rows of p + offsets. */
+template <typename Distance>
+double
+meanDistanceAfter (const PointMatrix &p, const Signal3 &offsets, Distance distance)
+{
+  double sum = 0.0;
+  for (Eigen::Index i = 0; i < p.rows (); ++i)
+    sum += distance (Eigen::Vector3d (p.row (i).transpose ().cast<double> () +
+                                      offsets.row (i).transpose ()));
+  return sum / double (p.rows ());
+}
+
+} // namespace
+
+TEST (SurfaceOffsets, BringARigidlyMovedCubeOntoTheReferenceSurface)
+{
+  // The reference: a noisy cube. The moving frame: another noisy sample of it, turned 4
+  // degrees and shifted by 5 sigma: every face has moved off itself.
+  const double noise = 0.01;
+  const PointMatrix reference = matrixOf (synthetic::noisyCube (6000, noise, 1));
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity ();
+  pose.translate (Eigen::Vector3d (0.05, -0.03, 0.02));
+  pose.rotate (Eigen::AngleAxisd (4.0 * M_PI / 180.0, Eigen::Vector3d (0.2, 0.3, 1.0).normalized ()));
+  const PointMatrix moving = matrixOf (synthetic::noisyCube (6000, noise, 2), pose);
+  const auto to_cube = [] (const Eigen::Vector3d &p) { return synthetic::distanceToCube (p); };
+  const Signal3 none = Signal3::Zero (moving.rows (), 3);
+  const double noisy = meanDistanceAfter (reference, Signal3::Zero (reference.rows (), 3), to_cube);
+  const double before = meanDistanceAfter (moving, none, to_cube);
+  const Signal3 offsets = surfaceOffsets (moving, reference);
+  const double after = meanDistanceAfter (moving, offsets, to_cube);
+  EXPECT_GT (before, 3.0 * noisy);
+  EXPECT_LT (after, 1.15 * noisy) << "noise alone " << noisy << ", moved " << before;
+
+  // Without the rigid rounds, the offsets along the normals alone still bring most of
+  // the faces back (not the edges, where the normals are mixed).
+  SurfaceOffsetParams local_only;
+  local_only.rigid_iterations = 0;
+  const double local = meanDistanceAfter (moving, surfaceOffsets (moving, reference, local_only), to_cube);
+  EXPECT_LT (local, 0.5 * before);
+  EXPECT_GT (local, after);
+}
+
+TEST (SurfaceOffsets, FollowADeformationThatNoRigidMotionExplains)
+{
+  // A sphere grown by 4% (5 sigma) against the unit sphere: no rigid motion helps, the
+  // offsets along the normals do.
+  const double noise = 0.008;
+  const PointMatrix reference = matrixOf (synthetic::noisySphere (5000, 1.0, noise, 3));
+  const PointMatrix moving = matrixOf (synthetic::noisySphere (5000, 1.04, noise, 4));
+  const auto to_sphere = [] (const Eigen::Vector3d &p) { return std::abs (p.norm () - 1.0); };
+  const Signal3 offsets = surfaceOffsets (moving, reference);
+  const double before = meanDistanceAfter (moving, Signal3::Zero (moving.rows (), 3), to_sphere);
+  const double after = meanDistanceAfter (moving, offsets, to_sphere);
+  EXPECT_GT (before, 0.035);
+  EXPECT_LT (after, 1.2 * noise * std::sqrt (2.0 / M_PI)) << "before " << before;
+}
+
+TEST (SurfaceOffsets, LeaveASurfaceThatDidNotMoveWhereItIs)
+{
+  // Two noisy samples of one sphere: the offsets are noise, shrunk to a small fraction of
+  // sigma along the normal (a turn about the centre, which maps the sphere onto itself,
+  // is allowed and harmless: only the radial part counts).
+  const double noise = 0.01;
+  const PointMatrix reference = matrixOf (synthetic::noisySphere (5000, 1.0, noise, 5));
+  const PointMatrix moving = matrixOf (synthetic::noisySphere (5000, 1.0, noise, 6));
+  const Signal3 offsets = surfaceOffsets (moving, reference);
+  double radial = 0.0;
+  for (Eigen::Index i = 0; i < moving.rows (); ++i)
+  {
+    const Eigen::Vector3d p = moving.row (i).transpose ().cast<double> ();
+    radial += std::abs ((p + offsets.row (i).transpose ()).norm () - p.norm ());
+  }
+  EXPECT_LT (radial / double (moving.rows ()), 0.2 * noise);
+}
+
+TEST (SurfaceOffsets, NoOffsetWhereTheReferenceDoesNotCoverTheSurface)
+{
+  // The reference covers x < 0 of a plane; the moving frame is the whole plane lifted by
+  // 0.05 (10 sigma). Without the rigid rounds, the covered part comes down and the far
+  // part, with no counterpart, stays.
+  const double noise = 0.005;
+  const pcl::PointCloud<pcl::PointXYZ> plane = synthetic::noisyPlane (8000, noise, 7);
+  pcl::PointCloud<pcl::PointXYZ> half;
+  for (const auto &p : synthetic::noisyPlane (8000, noise, 8))
+    if (p.x < 0.0f)
+      half.push_back (p);
+  Eigen::Isometry3d lift = Eigen::Isometry3d::Identity ();
+  lift.translate (Eigen::Vector3d (0.0, 0.0, 0.05));
+  const PointMatrix moving = matrixOf (plane, lift);
+  SurfaceOffsetParams params;
+  params.rigid_iterations = 0;
+  const Signal3 offsets = surfaceOffsets (moving, matrixOf (half), params);
+  int covered = 0, uncovered = 0;
+  for (Eigen::Index i = 0; i < moving.rows (); ++i)
+  {
+    if (moving (i, 0) < -0.3f)
+    {
+      EXPECT_NEAR (offsets (i, 2), -0.05, 0.01) << "row " << i;
+      ++covered;
+    }
+    else if (moving (i, 0) > 0.5f)
+    {
+      EXPECT_LT (offsets.row (i).norm (), 0.01) << "row " << i;
+      ++uncovered;
+    }
+  }
+  EXPECT_GT (covered, 1000);
+  EXPECT_GT (uncovered, 1000);
+  // With them, the rigid lift found on the covered half moves the whole plane down.
+  const Signal3 rigid = surfaceOffsets (moving, matrixOf (half));
+  for (Eigen::Index i = 0; i < moving.rows (); ++i)
+    if (moving (i, 0) > 0.5f)
+      EXPECT_NEAR (rigid (i, 2), -0.05, 0.01) << "row " << i;
+}
+
+TEST (SurfaceOffsets, ThreadsDegenerateCloudsAndInvalidParameters)
+{
+  const PointMatrix reference = matrixOf (synthetic::noisyCube (3000, 0.01, 9));
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity ();
+  pose.translate (Eigen::Vector3d (0.03, 0.0, 0.0));
+  const PointMatrix moving = matrixOf (synthetic::noisyCube (3000, 0.01, 10), pose);
+  SurfaceOffsetParams one, two;
+  one.num_threads = 1;
+  two.num_threads = 2;
+  const Signal3 a = surfaceOffsets (moving, reference, one);
+  EXPECT_TRUE (a == surfaceOffsets (moving, reference, two));
+  EXPECT_GT (a.rowwise ().norm ().mean (), 0.01);
+
+  // Fewer than 3 points on either side: nothing to compare, no offset.
+  EXPECT_TRUE (surfaceOffsets (moving, reference.topRows (2)).isZero ());
+  EXPECT_EQ (surfaceOffsets (moving.topRows (2), reference).rows (), 2);
+  EXPECT_TRUE (surfaceOffsets (moving.topRows (2), reference).isZero ());
+  EXPECT_EQ (surfaceOffsets (PointMatrix (0, 3), reference).rows (), 0);
+
+  SurfaceOffsetParams bad;
+  bad.k = 2;
+  EXPECT_THROW (surfaceOffsets (moving, reference, bad), std::invalid_argument);
+  bad = SurfaceOffsetParams ();
+  bad.significance = std::numeric_limits<double>::quiet_NaN ();
+  EXPECT_THROW (surfaceOffsets (moving, reference, bad), std::invalid_argument);
+  bad.significance = -1.0;
+  EXPECT_THROW (surfaceOffsets (moving, reference, bad), std::invalid_argument);
+  bad = SurfaceOffsetParams ();
+  bad.rigid_iterations = -1;
+  EXPECT_THROW (surfaceOffsets (moving, reference, bad), std::invalid_argument);
+  bad = SurfaceOffsetParams ();
+  bad.num_threads = -1;
+  EXPECT_THROW (surfaceOffsets (moving, reference, bad), std::invalid_argument);
+  PointMatrix nan = moving;
+  nan (5, 1) = std::numeric_limits<float>::quiet_NaN ();
+  EXPECT_THROW (surfaceOffsets (nan, reference), std::invalid_argument);
+  EXPECT_THROW (surfaceOffsets (moving, nan), std::invalid_argument);
 }

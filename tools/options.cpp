@@ -84,6 +84,7 @@ const ParameterSpec parameter_specs[] = {
     {"smoother", TEMPORAL_STEP, ValueType::SMOOTHER},
     {"k2", TEMPORAL_STEP, ValueType::COUNT},
     {"window", TEMPORAL_STEP, ValueType::COUNT},
+    {"motion_compensation", TEMPORAL_STEP, ValueType::SWITCH},
     {"threads", ALL_STEPS, ValueType::THREADS},
     {"memory_limit", ALL_STEPS, ValueType::NON_NEGATIVE},
 };
@@ -648,6 +649,10 @@ usage (const std::string &program)
     << "                          (default: " << sequence.getKTemporal () << ")\n"
     << "  -window N               frames t - N ... t + N take part in frame t (default: "
     << sequence.getTemporalWindow () << ")\n"
+    << "  -motion_compensation 0|1\n"
+    << "                          move the other frames onto frame t's surface first (rigid\n"
+    << "                          fit, then along the normals); 0 = the paper's graph on the\n"
+    << "                          frames as they are (default: " << (sequence.getMotionCompensation () ? 1 : 0) << ")\n"
     << p << " f0.pcd f1.pcd f2.pcd out_folder -outliers -temporal k2=3\n"
     << "\n"
     << "Other options:\n"

@@ -395,10 +395,14 @@ smoothSequence (const Options &options, std::size_t s, const std::vector<XyzFiel
     sequence.setKTemporal (static_cast<int> (step.parameters.at ("k2").number));
   if (step.has ("window"))
     sequence.setTemporalWindow (static_cast<int> (step.parameters.at ("window").number));
+  if (step.has ("motion_compensation"))
+    sequence.setMotionCompensation (step.parameters.at ("motion_compensation").number != 0.0);
   info ("  %s smoother, k2 ", use_tv ? "TV" : "Tikhonov");
   value ("%d", sequence.getKTemporal ());
   info (", window ");
   value ("%d", sequence.getTemporalWindow ());
+  info (", motion compensation ");
+  value ("%s", sequence.getMotionCompensation () ? "on" : "off");
   info (", %zu frames\n", files.size ());
 
   std::vector<Cloud::Ptr> frames;

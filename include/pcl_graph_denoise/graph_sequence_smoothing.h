@@ -96,6 +96,24 @@ public:
   inline int
   getTemporalWindow () const { return window_; }
 
+  /** \brief Motion compensation: before frame t is smoothed, the points of each other
+   *  frame of its window are moved onto frame t's surface (core::surfaceOffsets with its
+   *  defaults): first by the rigid motion that best explains the local offsets between
+   *  the two frames' surfaces along their normals (30 points of each frame per point),
+   *  then each along its normal by the offset that remains, where it is significant
+   *  (2 standard errors), smoothed over its neighbours. The temporal links then join
+   *  samples of the same surface when it moves between frames (a moving object, a
+   *  deforming surface, a registration left imperfect). Motion along the surface is not
+   *  seen and needs no compensation. Only frame t's points are returned, so the moved
+   *  copies never leave the solve. Default on; off gives the paper's graph on the frames
+   *  as they are. */
+  inline void
+  setMotionCompensation (bool on) { motion_compensation_ = on; }
+
+  /** \brief Whether motion compensation is on. */
+  inline bool
+  getMotionCompensation () const { return motion_compensation_; }
+
   /** \brief Batch: denoise a whole sequence. On success `output` holds one cloud per
    *  frame (a new cloud, the frames are not modified) and true is returned. On invalid
    *  parameters, a null frame or a failed solve, a PCL_ERROR says why, `output` is
@@ -157,6 +175,7 @@ protected:
   typename Smoother::Ptr smoother_;  ///< setSmoother
   int k_temporal_ = 3;               ///< setKTemporal
   int window_ = 1;                   ///< setTemporalWindow
+  bool motion_compensation_ = true;  ///< setMotionCompensation
 
   std::deque<PointCloudConstPtr> held_;  ///< the stream's frames first_held_ ... pushed_ - 1
   std::size_t first_held_ = 0;           ///< global index of held_.front ()

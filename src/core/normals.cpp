@@ -4,16 +4,21 @@
  */
 #include <pcl_graph_denoise/core/normals.h>
 
-#include "two_ring.h"
+#include "neighbor_search.h"
 #include "parallel.h"
+#include "spatial_order.h"
+#include "two_ring.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <stdexcept>
+#include <vector>
 
 namespace pcl_graph_denoise {
 namespace core {
@@ -172,6 +177,267 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
     }
   });
   return out;
+}
+
+namespace {
+
+/** The offset of one point's local surface between two clouds (surfaceOffsets). */
+struct LocalOffset
+{
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero ();
+  double offset = 0.0;          ///< along the normal
+  double standard_error = 0.0;  ///< of `offset`
+  bool matched = false;         ///< the reference samples the same part of the surface
+};
+
+/** surfaceOffsets' estimate for every `stride`-th row of `current` (the moving points in
+ *  Morton order, possibly moved rigidly; `own` lists each row's neighbours in its own
+ *  cloud, `counts` per row, k slots per row), against the reference cloud's tree; the
+ *  other rows are left unmatched. */
+std::vector<LocalOffset>
+localOffsets (const PointMatrix &current, const std::vector<VertexIndex> &own,
+              const std::vector<std::size_t> &counts, const PointMatrix &reference,
+              const detail::KdTree &other, int k, std::size_t stride, int num_threads)
+{
+  const std::size_t n = static_cast<std::size_t> (current.rows ());
+  std::vector<LocalOffset> out (n);
+  detail::parallelFor ((n + stride - 1) / stride, num_threads, [&] (std::size_t begin, std::size_t end) {
+    std::vector<VertexIndex> idx_b (k);
+    std::vector<float> d2 (k);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    for (std::size_t i = begin * stride; i < std::min (n, end * stride); i += stride)
+    {
+      const VertexIndex *idx_a = own.data () + i * std::size_t (k);
+      const std::size_t na = counts[i];
+      const std::size_t nb =
+          other.nearest (current.row (static_cast<Eigen::Index> (i)).data (), k, idx_b.data (), d2.data ());
+      const auto point = [] (const PointMatrix &p, VertexIndex r) {
+        return Eigen::Vector3d (p.row (r).transpose ().cast<double> ());
+      };
+      Eigen::Vector3d ca = Eigen::Vector3d::Zero (), cb = Eigen::Vector3d::Zero ();
+      for (std::size_t m = 0; m < na; ++m)
+        ca += point (current, idx_a[m]);
+      for (std::size_t m = 0; m < nb; ++m)
+        cb += point (reference, idx_b[m]);
+      ca /= double (na);
+      cb /= double (nb);
+      // The pooled scatter of both neighbourhoods, each about its own mean.
+      Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero ();
+      for (std::size_t m = 0; m < na; ++m)
+      {
+        const Eigen::Vector3d d = point (current, idx_a[m]) - ca;
+        scatter += d * d.transpose ();
+      }
+      for (std::size_t m = 0; m < nb; ++m)
+      {
+        const Eigen::Vector3d d = point (reference, idx_b[m]) - cb;
+        scatter += d * d.transpose ();
+      }
+      eig.compute (scatter);
+      LocalOffset &o = out[i];
+      o.normal = eig.eigenvectors ().col (0);
+      double sa = 0.0, sb = 0.0;
+      for (std::size_t m = 0; m < na; ++m)
+        sa += std::pow (o.normal.dot (point (current, idx_a[m]) - ca), 2);
+      for (std::size_t m = 0; m < nb; ++m)
+        sb += std::pow (o.normal.dot (point (reference, idx_b[m]) - cb), 2);
+      o.standard_error =
+          std::sqrt (sa / (double (na) * double (na - 1)) + sb / (double (nb) * double (nb - 1)));
+      o.offset = o.normal.dot (cb - ca);
+      // Without a counterpart (the reference does not cover this part of the surface, its
+      // nearest points are off to the side), no offset.
+      double reach = 0.0;
+      for (std::size_t m = 0; m < na; ++m)
+        reach = std::max (reach, (point (current, idx_a[m]) - ca).norm ());
+      o.matched = (cb - ca - o.offset * o.normal).norm () <= reach;
+      if (!o.matched)
+        o.offset = 0.0;
+    }
+  });
+  return out;
+}
+
+/** The rigid motion (small rotation omega about `centre`, translation tau) that best
+ *  explains the offsets along the normals, n . (omega x (q - c) + tau) = offset, in least
+ *  squares over the points whose residual is within 3 robust deviations of the first
+ *  fit's. Directions the normals do not constrain (turning a sphere about its centre,
+ *  sliding a plane along itself) get no motion. Only the matched points take part. Returns
+ *  false when fewer than 6 are matched or the step is negligible. */
+bool
+rigidStep (const PointMatrix &current, const std::vector<LocalOffset> &offsets,
+           Eigen::Matrix3d &rotation, Eigen::Vector3d &translation)
+{
+  const std::size_t n = offsets.size ();
+  const Eigen::Vector3d centre = current.colwise ().mean ().transpose ().cast<double> ();
+  double radius = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    radius += (current.row (i).transpose ().cast<double> () - centre).squaredNorm ();
+  radius = std::sqrt (radius / double (n));
+  if (!(radius > 0.0))
+    return false;
+  if (std::count_if (offsets.begin (), offsets.end (),
+                     [] (const LocalOffset &o) { return o.matched; }) < 6)
+    return false;
+  using Vector6d = Eigen::Matrix<double, 6, 1>;
+  const auto row = [&] (std::size_t i) {
+    Vector6d a;
+    const Eigen::Vector3d q = (current.row (i).transpose ().cast<double> () - centre) / radius;
+    a << q.cross (offsets[i].normal), offsets[i].normal;
+    return a;
+  };
+  std::vector<double> residual (n, 0.0);
+  Vector6d x = Vector6d::Zero ();
+  double cut = std::numeric_limits<double>::infinity ();
+  for (int pass = 0; pass < 2; ++pass)
+  {
+    Eigen::Matrix<double, 6, 6> h = Eigen::Matrix<double, 6, 6>::Zero ();
+    Vector6d g = Vector6d::Zero ();
+    for (std::size_t i = 0; i < n; ++i)
+      if (offsets[i].matched && std::abs (residual[i]) <= cut)
+      {
+        const Vector6d a = row (i);
+        h += a * a.transpose ();
+        g += a * offsets[i].offset;
+      }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig (h);
+    const double largest = eig.eigenvalues ().maxCoeff ();
+    if (!(largest > 0.0))
+      return false;
+    x.setZero ();
+    for (int e = 0; e < 6; ++e)
+      if (eig.eigenvalues ()[e] > 1e-3 * largest)
+        x += eig.eigenvectors ().col (e) * (eig.eigenvectors ().col (e).dot (g) / eig.eigenvalues ()[e]);
+    std::vector<double> abs_residual;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      residual[i] = offsets[i].offset - row (i).dot (x);
+      if (offsets[i].matched)
+        abs_residual.push_back (std::abs (residual[i]));
+    }
+    const std::size_t half = abs_residual.size () / 2;
+    std::nth_element (abs_residual.begin (), abs_residual.begin () + half, abs_residual.end ());
+    cut = 3.0 * abs_residual[half] / 0.6744897501960817;
+  }
+  // Done when the step moves no point by more than a hundredth of the offsets' typical
+  // standard error.
+  std::vector<double> errors;
+  for (const LocalOffset &o : offsets)
+    if (o.matched)
+      errors.push_back (o.standard_error);
+  std::nth_element (errors.begin (), errors.begin () + errors.size () / 2, errors.end ());
+  if (radius * x.norm () * 2.0 < 0.01 * errors[errors.size () / 2])
+    return false;
+  const Eigen::Vector3d omega = x.head<3> () / radius;
+  const double angle = omega.norm ();
+  rotation = angle > 0.0 ? Eigen::AngleAxisd (angle, omega / angle).toRotationMatrix ()
+                         : Eigen::Matrix3d::Identity ();
+  translation = centre + x.tail<3> () - rotation * centre;
+  return true;
+}
+
+/** surfaceOffsets on points in Morton order (both clouds: the searches then walk the
+ *  trees in order). */
+Signal3
+orderedSurfaceOffsets (const PointMatrix &moving, const PointMatrix &reference,
+                       const SurfaceOffsetParams &params)
+{
+  const std::size_t n = static_cast<std::size_t> (moving.rows ());
+  Signal3 offsets = Signal3::Zero (moving.rows (), 3);
+  const int k = params.k;
+
+  // Each moving point's neighbours in its own cloud (they stay its neighbours under a
+  // rigid motion).
+  std::vector<VertexIndex> own (n * std::size_t (k));
+  std::vector<std::size_t> counts (n);
+  {
+    const detail::KdTree tree (moving);
+    detail::parallelFor (n, params.num_threads, [&] (std::size_t begin, std::size_t end) {
+      std::vector<float> d2 (k);
+      for (std::size_t i = begin; i < end; ++i)
+        counts[i] = tree.nearest (moving.row (static_cast<Eigen::Index> (i)).data (), k,
+                                  own.data () + i * std::size_t (k), d2.data ());
+    });
+  }
+  const detail::KdTree other (reference);
+
+  // The rigid part of the motion first, then what it leaves along the normals.
+  PointMatrix current = moving;
+  Eigen::Matrix3d total_rotation = Eigen::Matrix3d::Identity ();
+  Eigen::Vector3d total_translation = Eigen::Vector3d::Zero ();
+  // The rigid fit on a spatially even subsample of about 20,000 points (every stride-th
+  // in Morton order) is as good and much cheaper.
+  const std::size_t stride = std::max<std::size_t> (1, n / 20000);
+  std::vector<LocalOffset> local =
+      localOffsets (current, own, counts, reference, other, k, stride, params.num_threads);
+  for (int it = 0; it < params.rigid_iterations; ++it)
+  {
+    Eigen::Matrix3d rotation;
+    Eigen::Vector3d translation;
+    if (!rigidStep (current, local, rotation, translation))
+      break;
+    total_rotation = rotation * total_rotation;
+    total_translation = rotation * total_translation + translation;
+    for (std::size_t i = 0; i < n; ++i)
+      current.row (i) = (total_rotation * moving.row (i).transpose ().cast<double> () +
+                         total_translation).transpose ().cast<float> ();
+    local = localOffsets (current, own, counts, reference, other, k, stride, params.num_threads);
+  }
+  if (stride > 1)
+    local = localOffsets (current, own, counts, reference, other, k, 1, params.num_threads);
+
+  // Each point's offset, shrunk where it is not significant (non-negative garrote: zero
+  // below `significance` standard errors, little shrinkage far above), then averaged
+  // over the point's neighbours (the motion of a surface is smooth; the estimates' noise
+  // is not).
+  Signal3 shrunk (moving.rows (), 3);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double offset = local[i].offset;
+    const double limit = params.significance * local[i].standard_error;
+    const double value = std::abs (offset) > limit ? offset - limit * limit / offset : 0.0;
+    shrunk.row (static_cast<Eigen::Index> (i)) = value * local[i].normal.transpose ();
+  }
+  detail::parallelFor (n, params.num_threads, [&] (std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      Eigen::RowVector3d sum = Eigen::RowVector3d::Zero ();
+      for (std::size_t m = 0; m < counts[i]; ++m)
+        sum += shrunk.row (own[i * std::size_t (k) + m]);
+      offsets.row (static_cast<Eigen::Index> (i)) =
+          current.row (static_cast<Eigen::Index> (i)).cast<double> () -
+          moving.row (static_cast<Eigen::Index> (i)).cast<double> () + sum / double (counts[i]);
+    }
+  });
+  return offsets;
+}
+
+} // namespace
+
+Signal3
+surfaceOffsets (const PointMatrix &moving, const PointMatrix &reference,
+                const SurfaceOffsetParams &params)
+{
+  if (params.k < 3)
+    throw std::invalid_argument ("surfaceOffsets: k must be >= 3");
+  if (!(std::isfinite (params.significance) && params.significance >= 0.0))
+    throw std::invalid_argument ("surfaceOffsets: significance must be finite and >= 0");
+  if (params.rigid_iterations < 0)
+    throw std::invalid_argument ("surfaceOffsets: rigid_iterations must be >= 0");
+  if (params.num_threads < 0)
+    throw std::invalid_argument ("surfaceOffsets: num_threads must be >= 0");
+  if (!moving.allFinite () || !reference.allFinite ())
+    throw std::invalid_argument ("surfaceOffsets: points must be finite");
+  Signal3 offsets = Signal3::Zero (moving.rows (), 3);
+  if (moving.rows () < 3 || reference.rows () < 3)
+    return offsets;
+  const std::vector<VertexIndex> order = detail::mortonOrder (moving, params.num_threads);
+  const Signal3 ordered = orderedSurfaceOffsets (
+      detail::reorderPoints (moving, order),
+      detail::reorderPoints (reference, detail::mortonOrder (reference, params.num_threads)),
+      params);
+  for (std::size_t v = 0; v < order.size (); ++v)
+    offsets.row (order[v]) = ordered.row (static_cast<Eigen::Index> (v));
+  return offsets;
 }
 
 } // namespace core

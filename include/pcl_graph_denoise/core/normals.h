@@ -6,7 +6,8 @@
 
 /** \file normals.h
  *  \brief Surface normals on the graph, and displacements restricted to them: smoothing
- *  that moves points across the surface but not along it. */
+ *  that moves points across the surface but not along it, and the offset along the
+ *  normal between two frames' surfaces (motion compensation of a sequence). */
 
 #include <pcl_graph_denoise/core/graph.h>
 
@@ -43,6 +44,46 @@ normalDisplacement (const Signal3 &f, const Signal3 &x, const Signal3 &normals);
 Signal3
 quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x, double noise,
                      int num_threads = 0);
+
+/** \brief Parameters of surfaceOffsets. */
+struct SurfaceOffsetParams
+{
+  /** Points of each cloud around a point that give its local surface. Valid: >= 3. */
+  int k = 30;
+  /** Offsets smaller than this many standard errors of their own estimate are taken as
+   *  noise: the offset is shrunk towards zero by that much (soft threshold), so that a
+   *  surface that did not move is not moved by the noise of the estimate. Valid: >= 0,
+   *  finite. */
+  double significance = 2.0;
+  /** Most rounds of the rigid alignment that comes first (a point-to-plane fit of the
+   *  offsets, robust to the points that do not follow it, stopping when a round moves
+   *  the points by less than a hundredth of the offsets' typical standard error); 0 =
+   *  none, the offsets alone. Valid: >= 0. */
+  int rigid_iterations = 5;
+  /** Worker threads; 0 = all hardware threads. The result does not depend on it. */
+  int num_threads = 0;
+};
+
+/** \brief For every point q of `moving`, the displacement that carries the surface
+ *  `moving` samples around q onto the surface `reference` samples there (motion
+ *  compensation between two frames of a sequence). The local offset: with A the k
+ *  nearest points of q in `moving` (q included) and B its k nearest in `reference`, n the
+ *  direction of least variance of A and B each about its own mean (the two surfaces are
+ *  locally parallel), the offset is n . (mean B - mean A), with a standard error from the
+ *  spread of A and B about their planes; 0 where B's mean lies off to the side of A by
+ *  more than A's extent (the reference does not cover that part). First the rigid motion
+ *  that best explains these offsets (point-to-plane, robust, rigid_iterations rounds) is
+ *  applied; then each point also moves along n by its remaining offset, shrunk where it is
+ *  not significant (non-negative garrote: 0 below `significance` standard errors, offset -
+ *  limit^2 / offset above) and averaged over A (a surface moves smoothly; the noise of the
+ *  estimates does not). Only the part of a motion that moves the surface is seen (a
+ *  surface sliding along itself gives no offset, and needs none for smoothing). Zero for
+ *  every point when either cloud has fewer than 3 points. The result is independent of
+ *  the number of threads.
+ *  \throws std::invalid_argument for invalid parameters or non-finite points. */
+Signal3
+surfaceOffsets (const PointMatrix &moving, const PointMatrix &reference,
+                const SurfaceOffsetParams &params = {});
 
 } // namespace core
 } // namespace pcl_graph_denoise

@@ -4,6 +4,7 @@
  */
 #pragma once
 
+#include <pcl_graph_denoise/core/normals.h>
 #include <pcl_graph_denoise/graph_sequence_smoothing.h>
 #include <pcl_graph_denoise/point_cloud_adaptor.h>
 
@@ -215,6 +216,34 @@ GraphSequenceSmoothing<PointT>::denoiseFrame (const std::vector<PointCloudConstP
     frame_rows.push_back (g.cloud_index.size ());
     for (Eigen::Index r = 0; r < g.xyz.rows (); ++r, ++row)
       start.row (row) = g.xyz.row (r).template cast<double> () + offset;
+  }
+
+  if (motion_compensation_)
+  {
+    // Each other frame moved onto the centre frame's surface (in single precision for
+    // the search, as every graph of the core; the offsets are added in double).
+    const core::PointMatrix reference =
+        start.middleRows (static_cast<Eigen::Index> (centre_row), own.xyz.rows ()).template cast<float> ();
+    core::SurfaceOffsetParams offset_params;
+    offset_params.num_threads = smoother.num_threads_;
+    Eigen::Index first = 0;
+    try
+    {
+      for (std::size_t f = 0; f < frame_rows.size (); ++f)
+      {
+        const auto rows = static_cast<Eigen::Index> (frame_rows[f]);
+        if (f != centre && rows > 0)
+          start.middleRows (first, rows) += core::surfaceOffsets (
+              start.middleRows (first, rows).template cast<float> (), reference, offset_params);
+        first += rows;
+      }
+    }
+    catch (const std::exception &e)
+    {
+      PCL_ERROR ("[pcl_graph_denoise::%s::filter] %s.\n", kName, e.what ());
+      output.reset ();
+      return false;
+    }
   }
 
   core::SpatioTemporalGraphParams params;
