@@ -153,12 +153,12 @@ TEST (SequenceSmoothing, MotionCompensationFollowsAMovingObject)
     return sum / 4.0;
   };
   GraphSequenceSmoothing<pcl::PointXYZ> sequence;
-  EXPECT_TRUE (sequence.getMotionCompensation ());
-  Outputs compensated, raw, per_frame;
-  ASSERT_TRUE (sequence.filter (frames, compensated));
-  sequence.setMotionCompensation (false);
   EXPECT_FALSE (sequence.getMotionCompensation ());
+  Outputs compensated, raw, per_frame;
   ASSERT_TRUE (sequence.filter (frames, raw));
+  sequence.setMotionCompensation (true);
+  EXPECT_TRUE (sequence.getMotionCompensation ());
+  ASSERT_TRUE (sequence.filter (frames, compensated));
   sequence.setKTemporal (0);
   ASSERT_TRUE (sequence.filter (frames, per_frame));
   const double alone = error (per_frame), paper = error (raw), moved = error (compensated);

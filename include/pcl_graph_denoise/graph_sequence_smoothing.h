@@ -105,8 +105,11 @@ public:
    *  samples of the same surface when it moves between frames (a moving object, a
    *  deforming surface, a registration left imperfect). Motion along the surface is not
    *  seen and needs no compensation. Only frame t's points are returned, so the moved
-   *  copies never leave the solve. Default on; off gives the paper's graph on the frames
-   *  as they are. */
+   *  copies never leave the solve. Default off (the paper's graph on the frames as they
+   *  are): on a still scene it cannot tell a sensor's frame-to-frame correlated noise
+   *  (depth quantisation, drift) from motion, and keeps what averaging would remove (the
+   *  fixed Kinect's frames stay 3.9 mm apart, median, against 1.6 mm without it); turn
+   *  it on for surfaces that move between frames by more than about the noise. */
   inline void
   setMotionCompensation (bool on) { motion_compensation_ = on; }
 
@@ -175,7 +178,7 @@ protected:
   typename Smoother::Ptr smoother_;  ///< setSmoother
   int k_temporal_ = 3;               ///< setKTemporal
   int window_ = 1;                   ///< setTemporalWindow
-  bool motion_compensation_ = true;  ///< setMotionCompensation
+  bool motion_compensation_ = false;  ///< setMotionCompensation
 
   std::deque<PointCloudConstPtr> held_;  ///< the stream's frames first_held_ ... pushed_ - 1
   std::size_t first_held_ = 0;           ///< global index of held_.front ()
