@@ -1101,6 +1101,10 @@ TEST (SurfaceOffsets, ThreadsDegenerateCloudsAndInvalidParameters)
   EXPECT_TRUE (a == surfaceOffsets (moving, reference, two));
   EXPECT_GT (a.rowwise ().norm ().mean (), 0.01);
 
+  // Units do not matter: the same clouds in millimetres give the offsets in millimetres.
+  const Signal3 scaled = surfaceOffsets (PointMatrix (1000.0f * moving), PointMatrix (1000.0f * reference), one);
+  EXPECT_LT ((scaled - 1000.0 * a).cwiseAbs ().maxCoeff (), 1e-3 * 1000.0 * a.cwiseAbs ().maxCoeff ());
+
   // Fewer than 3 points on either side: nothing to compare, no offset.
   EXPECT_TRUE (surfaceOffsets (moving, reference.topRows (2)).isZero ());
   EXPECT_EQ (surfaceOffsets (moving.topRows (2), reference).rows (), 2);

@@ -319,13 +319,14 @@ rigidStep (const PointMatrix &current, const std::vector<LocalOffset> &offsets,
     cut = 3.0 * abs_residual[half] / 0.6744897501960817;
   }
   // Done when the step moves no point by more than a hundredth of the offsets' typical
-  // standard error.
+  // standard error (x is in length units: the rotation part is scaled by the radius, and
+  // the points lie within about 2 radii of the centre).
   std::vector<double> errors;
   for (const LocalOffset &o : offsets)
     if (o.matched)
       errors.push_back (o.standard_error);
   std::nth_element (errors.begin (), errors.begin () + errors.size () / 2, errors.end ());
-  if (radius * x.norm () * 2.0 < 0.01 * errors[errors.size () / 2])
+  if (2.0 * x.norm () < 0.01 * errors[errors.size () / 2])
     return false;
   const Eigen::Vector3d omega = x.head<3> () / radius;
   const double angle = omega.norm ();
