@@ -186,7 +186,7 @@ sequenceError (const Sequence &sequence, double speed, const Outputs &frames)
  *  data-derived one. */
 Outputs
 run (const GraphSmoothing<pcl::PointXYZ>::Ptr &smoother, const Frames &frames, bool temporal,
-     double gamma, double *seconds = nullptr, bool motion_compensation = true)
+     bool motion_compensation, double gamma, double *seconds = nullptr)
 {
   if (gamma < 0.0)
     smoother->setAutomaticGamma ();
@@ -333,7 +333,7 @@ kinectStability (const Options &options, std::ostream &md, double &raw_median, d
     for (int variant = 0; variant < 3; ++variant)
     {
       double seconds = 0.0;
-      const Outputs out = run (makeSmoother (tv), frames, variant > 0, -1.0, &seconds, variant == 2);
+      const Outputs out = run (makeSmoother (tv), frames, variant > 0, variant == 2, -1.0, &seconds);
       const auto after = stability (out);
       std::snprintf (line, sizeof (line), "| %s, %s | %.3f | %.3f | %.1f |\n", tv ? "TV" : "Tikhonov",
                      labels[variant], 1e3 * after.first, 1e3 * after.second, seconds);
@@ -393,8 +393,8 @@ sequences (const Options &options)
         Cloud first;
         smoother->filter (first);
         const double gamma = smoother->getUsedGamma ();
-        const double alone_same = sequenceError (sequence, speed, run (smoother, frames, false, gamma));
-        const double together_same = sequenceError (sequence, speed, run (smoother, frames, true, gamma));
+        const double alone_same = sequenceError (sequence, speed, run (smoother, frames, false, false, gamma));
+        const double together_same = sequenceError (sequence, speed, run (smoother, frames, true, true, gamma));
         const double gain = 1.0 - together_same / alone_same;
         double &smallest = smallest_gain[speed < 1.0 ? 0 : 1];
         smallest = std::min (smallest, gain);
@@ -402,18 +402,18 @@ sequences (const Options &options)
         char cell[64], paper_cells[64] = " |";
         if (!options.quick)
         {
-          const double paper = sequenceError (sequence, speed, run (smoother, frames, true, gamma, nullptr, false));
+          const double paper = sequenceError (sequence, speed, run (smoother, frames, true, false, gamma));
           smallest_paper_gain[speed < 1.0 ? 0 : 1] = std::min (smallest_paper_gain[speed < 1.0 ? 0 : 1], 1.0 - paper / alone_same);
           std::snprintf (paper_cells, sizeof (paper_cells), "%.3f | %ld%%", 1e3 * paper,
                          std::lround (100.0 * (1.0 - paper / alone_same)));
-          const double alone = sequenceError (sequence, speed, run (smoother, frames, false, -1.0));
-          const double together = sequenceError (sequence, speed, run (smoother, frames, true, -1.0));
+          const double alone = sequenceError (sequence, speed, run (smoother, frames, false, false, -1.0));
+          const double together = sequenceError (sequence, speed, run (smoother, frames, true, true, -1.0));
           double best_alone = alone_same, best_together = together_same;
           for (double f : factors)
             if (f != 1.0)
             {
-              best_alone = std::min (best_alone, sequenceError (sequence, speed, run (smoother, frames, false, f * gamma)));
-              best_together = std::min (best_together, sequenceError (sequence, speed, run (smoother, frames, true, f * gamma)));
+              best_alone = std::min (best_alone, sequenceError (sequence, speed, run (smoother, frames, false, false, f * gamma)));
+              best_together = std::min (best_together, sequenceError (sequence, speed, run (smoother, frames, true, true, f * gamma)));
             }
           std::snprintf (cell, sizeof (cell), "%.3f | %.3f", 1e3 * alone, 1e3 * together);
           cells = cell;
@@ -444,9 +444,9 @@ sequences (const Options &options)
     for (bool tv : {false, true})
     {
       double alone = 0.0, together = 0.0, moved = 0.0;
-      run (makeSmoother (tv), frames, false, -1.0, &alone);
-      run (makeSmoother (tv), frames, true, -1.0, &together, false);
-      run (makeSmoother (tv), frames, true, -1.0, &moved, true);
+      run (makeSmoother (tv), frames, false, false, -1.0, &alone);
+      run (makeSmoother (tv), frames, true, false, -1.0, &together);
+      run (makeSmoother (tv), frames, true, true, -1.0, &moved);
       char row[160];
       std::snprintf (row, sizeof (row), "| %s | %.3f | %.3f | %.2fx | %.3f | %.2fx |\n",
                      tv ? "TV" : "Tikhonov", alone / 10.0, together / 10.0, together / alone,
