@@ -1168,6 +1168,50 @@ TEST (Cli, GammaRiskChoosesAsTheLibraryDoes)
   EXPECT_EQ (runTool (dir, {"in.pcd", "out.pcd", "-tikhonov", "-gamma", "risky"}).code, 2);
 }
 
+TEST (Cli, LocalSurfaceReachesTheFilter)
+{
+  // Each value of -local_surface gives the library's result with that surface; no
+  // value gives the library's default (the blended quadrics); the three differ.
+  const fs::path dir = testFolder ();
+  const PCLPointCloud2 input = sphereFrames ()[0];
+  savePcd (dir / "in.pcd", input);
+  pcl::PointCloud<pcl::PointXYZ>::Ptr xyz (new pcl::PointCloud<pcl::PointXYZ>);
+  pcl::fromPCLPointCloud2 (input, *xyz);
+  const std::vector<std::pair<std::string, pcl_graph_denoise::LocalSurface>> surfaces = {
+      {"", pcl_graph_denoise::LocalSurface::BLENDED_QUADRICS},
+      {"plane", pcl_graph_denoise::LocalSurface::PLANE},
+      {"quadric", pcl_graph_denoise::LocalSurface::QUADRIC},
+      {"blended", pcl_graph_denoise::LocalSurface::BLENDED_QUADRICS}};
+  std::map<std::string, std::vector<float>> y;  // the library's results
+  for (const auto &[value, surface] : surfaces)
+  {
+    pcl_graph_denoise::GraphTVSmoothing<pcl::PointXYZ> filter;
+    if (!value.empty ())
+      filter.setLocalSurface (surface);
+    filter.setInputCloud (xyz);
+    pcl::PointCloud<pcl::PointXYZ> expected;
+    filter.filter (expected);
+    std::vector<std::string> args = {"in.pcd", "out.pcd", "-tv"};
+    if (!value.empty ())
+      args.insert (args.end (), {"-local_surface", value});
+    const ToolRun run = runTool (dir, args);
+    ASSERT_EQ (run.code, 0) << describe (args, run);
+    const PCLPointCloud2 output = load (dir / "out.pcd");
+    ASSERT_EQ (size (output), expected.size ());
+    for (std::size_t i = 0; i < expected.size (); ++i)
+      ASSERT_EQ (coordinate (output, i, "y"), expected[i].y) << value << ", point " << i;
+    for (const auto &p : expected)
+      y[value].push_back (p.y);
+  }
+  EXPECT_EQ (y[""], y["blended"]);
+  EXPECT_NE (y["plane"], y["blended"]);
+  EXPECT_NE (y["quadric"], y["blended"]);
+  EXPECT_NE (y["plane"], y["quadric"]);
+  const ToolRun help = runTool (dir, {"-h"});
+  EXPECT_NE (help.out.find ("-local_surface plane|quadric|blended"), std::string::npos) << help.out;
+  EXPECT_NE (help.out.find ("(default: blended)"), std::string::npos) << help.out;
+}
+
 TEST (Cli, SmoothingReportsEachPassGraphAsItIsBuilt)
 {
   const fs::path dir = testFolder ();

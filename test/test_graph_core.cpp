@@ -911,10 +911,50 @@ TEST (Normals, RobustQuadricIgnoresTheOtherSheet)
   };
   const double plain = mean_off_sheet (quadricDisplacement (graph, f, f, 0.0));
   const double robust = mean_off_sheet (quadricDisplacement (graph, f, f, 0.005));
-  std::printf ("distance to the own sheet: noisy %.2e, plain fit %.2e, robust %.2e\n", mean_off_sheet (f),
-               plain, robust);
+  const double blended =
+      mean_off_sheet (quadricDisplacement (graph, f, f, 0.005, 0, QuadricProjection::BLENDED));
+  std::printf ("distance to the own sheet: noisy %.2e, plain fit %.2e, robust %.2e, blended %.2e\n",
+               mean_off_sheet (f), plain, robust, blended);
   EXPECT_GT (plain, 0.01);                      // dragged towards the other sheet
   EXPECT_LT (robust, 0.6 * mean_off_sheet (f));  // denoised on its own sheet
+  // Blending: the other sheet's patches, a gap of 12 noise levels away, drop out.
+  EXPECT_LT (blended, robust);
+}
+
+TEST (Normals, BlendedQuadricsAverageOutTheFitsNoise)
+{
+  // A noisy unit sphere fitted as it is (x = f): each vertex's own quadric carries the
+  // noise of its 30-odd points; the mean of the overlapping fits around it carries less.
+  std::mt19937 rng (74);
+  std::normal_distribution<double> g (0.0, 1.0);
+  const Eigen::Index n = 4000;
+  const double noise = 0.01;
+  Signal3 noisy (n, 3);
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    const Eigen::Vector3d p = Eigen::Vector3d (g (rng), g (rng), g (rng)).normalized ();
+    noisy.row (i) = (p + noise * Eigen::Vector3d (g (rng), g (rng), g (rng))).transpose ();
+  }
+  const PointGraph graph = buildKnnGraph (noisy.cast<float> ());
+  const Signal3 f = inVertexOrder (graph, noisy);
+  const auto mean_distance = [] (const Signal3 &s) {
+    return (s.rowwise ().norm ().array () - 1.0).abs ().mean ();
+  };
+  const Signal3 own = quadricDisplacement (graph, f, f, noise);
+  const Signal3 blended = quadricDisplacement (graph, f, f, noise, 0, QuadricProjection::BLENDED);
+  std::printf ("distance to the sphere: noisy %.2e, own patch %.2e, blended %.2e\n", mean_distance (f),
+               mean_distance (own), mean_distance (blended));
+  EXPECT_LT (mean_distance (blended), 0.9 * mean_distance (own));
+  EXPECT_EQ (quadricDisplacement (graph, f, f, noise, 1, QuadricProjection::BLENDED),
+             quadricDisplacement (graph, f, f, noise, 2, QuadricProjection::BLENDED));
+  // The moves stay along the normals (here about radial): no drift along the surface.
+  double sine = 0.0;
+  for (Eigen::Index v = 0; v < n; ++v)
+  {
+    const Eigen::Vector3d d = (blended.row (v) - f.row (v)).transpose ().normalized ();
+    sine += d.cross (f.row (v).transpose ().normalized ()).norm ();
+  }
+  EXPECT_LT (sine / double (n), 0.15);
 }
 
 TEST (Normals, QuadricWithTooFewPointsKeepsTheEstimate)
@@ -923,8 +963,10 @@ TEST (Normals, QuadricWithTooFewPointsKeepsTheEstimate)
   f << 0, 0, 0, 1, 0, 0;
   x << 0, 0.1, 0, 1, 0.1, 0;
   const PointGraph graph = buildKnnGraph (f.cast<float> ());
-  EXPECT_EQ (quadricDisplacement (graph, inVertexOrder (graph, f), inVertexOrder (graph, x), 0.0),
-             inVertexOrder (graph, x));
+  for (const auto projection : {QuadricProjection::OWN_PATCH, QuadricProjection::BLENDED})
+    EXPECT_EQ (quadricDisplacement (graph, inVertexOrder (graph, f), inVertexOrder (graph, x), 0.0, 0,
+                                    projection),
+               inVertexOrder (graph, x));
 }
 
 TEST (Normals, QuadricIsNotExtrapolatedFromACollapsedPatch)
@@ -949,15 +991,17 @@ TEST (Normals, QuadricIsNotExtrapolatedFromACollapsedPatch)
   // With the noise level (as the filters call it), and without: the quadric is then
   // evaluated on the patch only, where it stays within a micrometre of x.
   for (const double level : {noise, 0.0})
-  {
-    const Signal3 out = quadricDisplacement (graph, f, x, level);
-    ASSERT_TRUE (out.allFinite ());
-    double worst = 0.0;
-    for (Eigen::Index v = 0; v < n; ++v)
-      worst = std::max (worst, (out.row (v) - f.row (v)).norm () -
-                                   ((f.row (v) - x.row (v)).norm () + 3.0 * noise));
-    EXPECT_LE (worst, 0.0) << "noise level " << level;
-  }
+    for (const auto projection : {QuadricProjection::OWN_PATCH, QuadricProjection::BLENDED})
+    {
+      const Signal3 out = quadricDisplacement (graph, f, x, level, 0, projection);
+      ASSERT_TRUE (out.allFinite ());
+      double worst = 0.0;
+      for (Eigen::Index v = 0; v < n; ++v)
+        worst = std::max (worst, (out.row (v) - f.row (v)).norm () -
+                                     ((f.row (v) - x.row (v)).norm () + 3.0 * noise));
+      EXPECT_LE (worst, 0.0) << "noise level " << level << ", blended "
+                             << (projection == QuadricProjection::BLENDED);
+    }
 }
 
 namespace {

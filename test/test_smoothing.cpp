@@ -369,17 +369,24 @@ TEST (SmoothingQuality, QuadricSurfaceBeatsThePlaneOnCurvedShapes)
     GraphTVSmoothing<pcl::PointXYZ> tv;
     GraphSmoothing<pcl::PointXYZ> &filter =
         which == 0 ? static_cast<GraphSmoothing<pcl::PointXYZ> &> (tikhonov) : tv;
+    EXPECT_EQ (filter.getLocalSurface (), LocalSurface::BLENDED_QUADRICS);
+    const double blended = meanDistance (*run (filter, sphere), kToSphere);
+    const double blended_gamma = filter.getUsedGamma ();
+    filter.setLocalSurface (LocalSurface::QUADRIC);
     EXPECT_EQ (filter.getLocalSurface (), LocalSurface::QUADRIC);
     const double quadric = meanDistance (*run (filter, sphere), kToSphere);
     const double quadric_gamma = filter.getUsedGamma ();
     filter.setLocalSurface (LocalSurface::PLANE);
     EXPECT_EQ (filter.getLocalSurface (), LocalSurface::PLANE);
     const double plane = meanDistance (*run (filter, sphere), kToSphere);
-    std::printf ("%s on a sparse sphere: noisy %.5f, plane %.5f, quadric %.5f\n",
-                 which == 0 ? "Tikhonov" : "TV", meanDistance (*sphere, kToSphere), plane, quadric);
+    std::printf ("%s on a sparse sphere: noisy %.5f, plane %.5f, quadric %.5f, blended %.5f\n",
+                 which == 0 ? "Tikhonov" : "TV", meanDistance (*sphere, kToSphere), plane, quadric,
+                 blended);
     EXPECT_LT (quadric, 0.85 * plane);
-    // The data-derived gamma is halved with the quadric (it removes noise itself).
+    EXPECT_LT (blended, 0.95 * quadric);
+    // The data-derived gamma is halved with the quadrics (they remove noise themselves).
     EXPECT_NEAR (quadric_gamma, 0.5 * filter.getUsedGamma (), 1e-12 * quadric_gamma);
+    EXPECT_EQ (blended_gamma, quadric_gamma);
   }
 }
 
@@ -440,42 +447,48 @@ TEST (SmoothingQuality, RiskEstimateFollowsTheSurfacesDetail)
   const std::vector<Shape> shapes = {
       {"sphere", synthetic::noisySphere (6000, 1.0, 0.01, 36), kToSphere, true, 1.1},
       {"corrugated square", noisyBumps (12000, 0.005, 37), distanceToBumps, false, 1.3}};
-  for (int which = 0; which < 2; ++which)
-    for (const auto &shape : shapes)
-    {
-      auto cloud = std::make_shared<synthetic::Cloud> (shape.cloud);
-      std::unique_ptr<GraphSmoothing<pcl::PointXYZ>> filter;
-      if (which == 0)
-        filter.reset (new GraphTikhonovSmoothing<pcl::PointXYZ>);
-      else
-        filter.reset (new GraphTVSmoothing<pcl::PointXYZ>);
-      EXPECT_EQ (filter->getGammaSelection (), GammaSelection::RULE);
-      const double rule = meanDistance (*run (*filter, cloud), shape.distance);
-      const double rule_gamma = filter->getUsedGamma ();
-      double best = std::numeric_limits<double>::infinity ();
-      for (double m : {0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0})
+  // With the blended quadrics (the default) the estimate errs one step of sqrt 2 high on
+  // the corrugated square with TV (1.41 x, where the best is at 1/4 or below): there it
+  // may pass the rule by a step, and no more.
+  for (const LocalSurface surface : {LocalSurface::QUADRIC, LocalSurface::BLENDED_QUADRICS})
+    for (int which = 0; which < 2; ++which)
+      for (const auto &shape : shapes)
       {
-        filter->setGamma (m * rule_gamma);
-        best = std::min (best, meanDistance (*run (*filter, cloud), shape.distance));
+        const bool blended = surface == LocalSurface::BLENDED_QUADRICS;
+        auto cloud = std::make_shared<synthetic::Cloud> (shape.cloud);
+        std::unique_ptr<GraphSmoothing<pcl::PointXYZ>> filter;
+        if (which == 0)
+          filter.reset (new GraphTikhonovSmoothing<pcl::PointXYZ>);
+        else
+          filter.reset (new GraphTVSmoothing<pcl::PointXYZ>);
+        EXPECT_EQ (filter->getGammaSelection (), GammaSelection::RULE);
+        filter->setLocalSurface (surface);
+        const double rule = meanDistance (*run (*filter, cloud), shape.distance);
+        const double rule_gamma = filter->getUsedGamma ();
+        double best = std::numeric_limits<double>::infinity ();
+        for (double m : {0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0})
+        {
+          filter->setGamma (m * rule_gamma);
+          best = std::min (best, meanDistance (*run (*filter, cloud), shape.distance));
+        }
+        filter->setAutomaticGamma ();
+        filter->setGammaSelection (GammaSelection::RISK_ESTIMATE);
+        const double risk = meanDistance (*run (*filter, cloud), shape.distance);
+        const double multiple = filter->getUsedGamma () / rule_gamma;
+        std::printf ("%s, %s, %s: rule %.5f, best of the sweep %.5f, risk estimate %.5f (%.3g x the "
+                     "rule's gamma)\n", shape.name, which == 0 ? "Tikhonov" : "TV",
+                     blended ? "blended quadrics" : "own quadric", rule, best, risk, multiple);
+        EXPECT_LT (risk, shape.within_best * best) << shape.name;
+        EXPECT_LE (risk, (blended ? 1.1 : 1.02) * rule) << shape.name;
+        if (shape.more)
+          EXPECT_GE (multiple, 4.0) << shape.name;
+        else
+          EXPECT_LE (multiple, blended ? 1.5 : 1.0) << shape.name;
+        // An explicit gamma is used as it is.
+        filter->setGamma (0.5 * rule_gamma);
+        run (*filter, cloud);
+        EXPECT_EQ (filter->getUsedGamma (), 0.5 * rule_gamma);
       }
-      filter->setAutomaticGamma ();
-      filter->setGammaSelection (GammaSelection::RISK_ESTIMATE);
-      const double risk = meanDistance (*run (*filter, cloud), shape.distance);
-      const double multiple = filter->getUsedGamma () / rule_gamma;
-      std::printf ("%s, %s: rule %.5f, best of the sweep %.5f, risk estimate %.5f (%.3g x the "
-                   "rule's gamma)\n", shape.name, which == 0 ? "Tikhonov" : "TV", rule, best, risk,
-                   multiple);
-      EXPECT_LT (risk, shape.within_best * best) << shape.name;
-      EXPECT_LE (risk, 1.02 * rule) << shape.name;
-      if (shape.more)
-        EXPECT_GE (multiple, 4.0) << shape.name;
-      else
-        EXPECT_LE (multiple, 1.0) << shape.name;
-      // An explicit gamma is used as it is.
-      filter->setGamma (0.5 * rule_gamma);
-      run (*filter, cloud);
-      EXPECT_EQ (filter->getUsedGamma (), 0.5 * rule_gamma);
-    }
 }
 
 TEST (SmoothingQuality, PaperFilterIsTheExactTikhonovSolve)
@@ -571,7 +584,7 @@ TEST (SmoothingQuality, ExplicitParametersAreUsed)
   filter.setLocalSurface (LocalSurface::PLANE);
   run (filter, cloud);
   EXPECT_EQ (filter.getEstimatedNoise (), 0.0);  // nothing else needs it
-  filter.setLocalSurface (LocalSurface::QUADRIC);
+  filter.setLocalSurface (LocalSurface::BLENDED_QUADRICS);
   filter.setSolver (core::TikhonovSolver::CONJUGATE_GRADIENT);
   filter.setTolerance (1e-10);
   const auto iterative = run (filter, cloud);
@@ -794,7 +807,12 @@ TEST (SmoothingBadInput, RiskSelectionOnDegenerateCloudsKeepsTheRulesResult)
       filter->setGammaSelection (GammaSelection::RISK_ESTIMATE);
       const auto risk = run (*filter, cloud);
       ASSERT_EQ (risk->size (), cloud->size ());
-      EXPECT_TRUE (sameCloud (*risk, *rule)) << cloud->size () << " points";
+      // The same up to rounding: on the noiseless plane the noise estimate is a rounding
+      // error (1.7e-10) and the candidates differ by as much (1e-16).
+      double worst = 0.0;
+      for (std::size_t i = 0; i < risk->size (); ++i)
+        worst = std::max (worst, double (((*risk)[i].getVector3fMap () - (*rule)[i].getVector3fMap ()).norm ()));
+      EXPECT_LE (worst, 1e-12) << cloud->size () << " points";
       EXPECT_TRUE (sameCloud (*cloud, before));
       for (const auto &p : *risk)
         EXPECT_TRUE (isFinitePosition (p));

@@ -48,7 +48,7 @@ enum class ValueType
   COUNT,         ///< integer >= 0
   SWITCH,        ///< 0 or 1 (also true/false, on/off, yes/no)
   GAMMA,         ///< "auto", "risk" or a finite real >= 0
-  SURFACE,       ///< plane or quadric
+  SURFACE,       ///< plane, quadric or blended
   SOLVER,        ///< cg or cholmod
   SMOOTHER,      ///< tikhonov or tv
   NORM           ///< isotropic or anisotropic
@@ -176,8 +176,8 @@ parseValue (const ParameterSpec &spec, const std::string &text)
       throw invalid ("expected 0 or 1");
     return value;
   case ValueType::SURFACE:
-    if (text != "plane" && text != "quadric")
-      throw invalid ("expected plane or quadric");
+    if (text != "plane" && text != "quadric" && text != "blended")
+      throw invalid ("expected plane, quadric or blended");
     return value;
   case ValueType::SOLVER:
     if (text != "cg" && text != "cholmod")
@@ -542,7 +542,9 @@ usage (const std::string &program)
                                 : both (tikhonov.getGamma (), tv.getGamma ());
   const std::string passes = both (tikhonov.getGraphIterations (), tv.getGraphIterations ());
   const std::string normal = both (tikhonov.getNormalDisplacement (), tv.getNormalDisplacement ());
-  const char *surface = tv.getLocalSurface () == LocalSurface::PLANE ? "plane" : "quadric";
+  const char *surface = tv.getLocalSurface () == LocalSurface::PLANE     ? "plane"
+                        : tv.getLocalSurface () == LocalSurface::QUADRIC ? "quadric"
+                                                                         : "blended";
   const std::string twicing =
       both (tikhonov.getShrinkageCorrection (), tv.getShrinkageCorrection ());
   const std::string tolerance = both (tikhonov.getTolerance (), tv.getTolerance ());
@@ -622,10 +624,10 @@ usage (const std::string &program)
     << "  -normal_displacement 0|1\n"
     << "                          move points only along the fitted normal (default: " << normal
     << ")\n"
-    << "  -local_surface plane|quadric\n"
+    << "  -local_surface plane|quadric|blended\n"
     << "                          what a point moves onto along its normal: the fitted plane,\n"
-    << "                          or a quadric fitted robustly over two graph rings\n"
-    << "                          (default: " << surface << ")\n"
+    << "                          a quadric fitted robustly over two graph rings, or the mean\n"
+    << "                          of the quadrics around it (default: " << surface << ")\n"
     << "  -shrinkage_correction 0|1\n"
     << "                          twicing against the shrinkage of curved surfaces (default: "
     << twicing << ")\n"

@@ -20,8 +20,9 @@ namespace pcl_graph_denoise {
  *  (GraphSmoothing::setLocalSurface). */
 enum class LocalSurface
 {
-  PLANE,   ///< the plane fitted to the smoothed points over two graph rings
-  QUADRIC  ///< a quadric height field fitted robustly to the smoothed points over two rings
+  PLANE,            ///< the plane fitted to the smoothed points over two graph rings
+  QUADRIC,          ///< a quadric height field fitted robustly to the smoothed points over two rings
+  BLENDED_QUADRICS  ///< the weighted mean of the quadrics of the point's two rings (default)
 };
 
 /** \brief How the data-derived strength is chosen (GraphSmoothing::setGammaSelection). */
@@ -171,14 +172,17 @@ public:
   getNormalDisplacement () const { return normal_displacement_; }
 
   /** \brief The surface each point moves onto with normal displacement on.
-   *  LocalSurface::QUADRIC (default): a quadric height field fitted over two graph
-   *  rings of the smoothed points, robustly re-weighted by the estimated noise level so
-   *  that the far side of a thin wall or the other face at an edge does not pull it
-   *  (core::quadricDisplacement); it keeps curvature that a plane cuts, and with it the
-   *  data-derived gamma is half the paper rule's (the fit removes noise itself).
-   *  LocalSurface::PLANE: the plane through the smoothed point, normal from the fit of
-   *  the smoothed points over two rings (core::normalDisplacement), the previous
-   *  default. Both measured in docs/evaluation.md. */
+   *  LocalSurface::BLENDED_QUADRICS (default): around every vertex, a quadric height
+   *  field fitted over two graph rings of the smoothed points, robustly re-weighted by
+   *  the estimated noise level so that the far side of a thin wall or the other face at
+   *  an edge does not pull it; each point moves onto the weighted mean of the quadrics of
+   *  its two rings (weights: its distance to each patch's centre and to its surface), so
+   *  that the overlapping fits average out their own noise (core::quadricDisplacement
+   *  with core::QuadricProjection::BLENDED). LocalSurface::QUADRIC: onto its own vertex's
+   *  quadric only, the previous default. With either, the data-derived gamma is half the
+   *  paper rule's (the fits remove noise themselves). LocalSurface::PLANE: the plane
+   *  through the smoothed point, normal from the fit of the smoothed points over two rings
+   *  (core::normalDisplacement). All measured in docs/evaluation.md. */
   inline void
   setLocalSurface (LocalSurface surface) { local_surface_ = surface; }
 
@@ -340,7 +344,7 @@ protected:
   GammaSelection gamma_selection_ = GammaSelection::RULE;  ///< setGammaSelection
   int graph_iterations_ = 1;      ///< setGraphIterations
   bool normal_displacement_ = true;                      ///< setNormalDisplacement
-  LocalSurface local_surface_ = LocalSurface::QUADRIC;  ///< setLocalSurface
+  LocalSurface local_surface_ = LocalSurface::BLENDED_QUADRICS;  ///< setLocalSurface
   bool shrinkage_correction_ = true;                     ///< setShrinkageCorrection
   double tolerance_;              ///< setTolerance
   int max_iterations_;            ///< setMaximumIterations

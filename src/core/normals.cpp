@@ -61,6 +61,10 @@ namespace {
 
 constexpr std::size_t kQuadricMinimumRing = 10;  // 6 coefficients, with some redundancy
 constexpr int kRobustIterations = 4;
+/** Blending: a patch's weight falls as exp(-d^2 / (2 (c r)^2)) with the point's
+ *  tangential distance d from the patch's centre, r the patch's radius (the RMS
+ *  tangential spread of its two rings, about the reach of its one ring at c = 1/2). */
+constexpr double kBlendReach = 0.5;
 
 using Basis = Eigen::Matrix<double, 6, 1>;
 
@@ -74,106 +78,203 @@ quadricBasis (double a, double b)
   return phi;
 }
 
+/** One vertex's local surface: a frame and the height field over it (17 doubles: a
+ *  patch is kept for every vertex while the surfaces are blended). */
+struct Patch
+{
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero ();
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero ();
+  /** The first tangential axis divided by the patch radius (the second is normal x u);
+   *  zero for a patch without extent. */
+  Eigen::Vector3d u = Eigen::Vector3d::Zero ();
+  /** Height coefficients over quadricBasis; zero = the tangent plane through origin. */
+  Basis q = Basis::Zero ();
+  /** The largest squared (a^2 + b^2) of the points it was fitted to; negative: fewer
+   *  than 3 points in the rings, no frame. */
+  double support = -1.0;
+
+  inline bool
+  valid () const { return support >= 0.0; }
+
+  /** Tangential coordinates of p. */
+  inline void
+  coordinates (const Eigen::Vector3d &p, double &a, double &b) const
+  {
+    const Eigen::Vector3d d = p - origin;
+    a = d.dot (u);
+    b = d.dot (normal.cross (u));
+  }
+
+  /** The height of the surface above (a, b), pulled back onto the fitted extent when
+   *  (a, b) lies outside: a patch much smaller than a point's distance from it (the
+   *  points of a piecewise-constant TV estimate, collapsed together) must not be
+   *  extrapolated. */
+  inline double
+  height (double a, double b) const
+  {
+    const double reach = a * a + b * b;
+    if (reach > support)
+    {
+      const double pull = support > 0.0 ? std::sqrt (support / reach) : 0.0;
+      a *= pull;
+      b *= pull;
+    }
+    return quadricBasis (a, b).dot (q);
+  }
+
+  /** The signed distance along the normal from p up to the surface, limited to
+   *  +-limit when limit > 0. */
+  inline double
+  move (const Eigen::Vector3d &p, double limit) const
+  {
+    double a, b;
+    coordinates (p, a, b);
+    const double m = height (a, b) - (p - origin).dot (normal);
+    return limit > 0.0 ? std::clamp (m, -limit, limit) : m;
+  }
+};
+
+/** Fits vertex i's patch to the points of x over its two rings (`ring`), robustly with
+ *  a noise level > 0 (quadricDisplacement). */
+Patch
+fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i, double noise,
+          std::vector<Basis> &phi, std::vector<double> &height, std::vector<double> &weight)
+{
+  Patch patch;
+  if (ring.size () < 3)
+    return patch;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect (detail::ringCovariance (x, ring, i));
+  patch.support = 0.0;
+  patch.origin = x.row (i).transpose ();
+  patch.normal = eig.eigenvectors ().col (0);
+  const double radius = std::sqrt (eig.eigenvalues ()(2) + eig.eigenvalues ()(1));
+  if (!(radius > 0.0))
+    return patch;  // the plane through x_i, without extent
+  patch.u = eig.eigenvectors ().col (2) / radius;  // normal x u: the middle axis / radius
+  if (ring.size () < kQuadricMinimumRing)
+    return patch;  // the plane through x_i
+  phi.resize (ring.size ());
+  height.resize (ring.size ());
+  weight.assign (ring.size (), 1.0);
+  for (std::size_t r = 0; r < ring.size (); ++r)
+  {
+    const Eigen::Vector3d p = x.row (ring[r]).transpose ();
+    double a, b;
+    patch.coordinates (p, a, b);
+    phi[r] = quadricBasis (a, b);
+    height[r] = (p - patch.origin).dot (patch.normal);
+    patch.support = std::max (patch.support, a * a + b * b);
+  }
+  const bool robust = noise > 0.0;
+  Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt;
+  // Robust: the first weights come from the plane through x_i (q = 0), so that a point
+  // between two sheets starts on its own side.
+  for (int iteration = 0; iteration < (robust ? kRobustIterations : 1); ++iteration)
+  {
+    if (robust)
+      for (std::size_t r = 0; r < ring.size (); ++r)
+      {
+        const double t = (height[r] - phi[r].dot (patch.q)) / noise;
+        weight[r] = std::exp (-0.5 * t * t);
+      }
+    Eigen::Matrix<double, 6, 6> normal_matrix = Eigen::Matrix<double, 6, 6>::Zero ();
+    Basis rhs = Basis::Zero ();
+    for (std::size_t r = 0; r < ring.size (); ++r)
+    {
+      // The full outer product: a fixed 6 x 6 that Eigen unrolls, several times faster
+      // than its generic rank update of a triangle.
+      normal_matrix.noalias () += (weight[r] * phi[r]) * phi[r].transpose ();
+      rhs += weight[r] * height[r] * phi[r];
+    }
+    ldlt.compute (normal_matrix);
+    if (ldlt.info () != Eigen::Success || !(ldlt.rcond () > 1e-10))
+      break;  // too few points keep weight: keep the last fit (or the plane)
+    const Basis solved = ldlt.solve (rhs);
+    if (!solved.allFinite ())
+      break;
+    patch.q = solved;
+  }
+  return patch;
+}
+
 } // namespace
 
 Signal3
 quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x, double noise,
-                     int num_threads)
+                     int num_threads, QuadricProjection projection)
 {
   const std::size_t n = graph.numVertices ();
   if (static_cast<std::size_t> (f.rows ()) != n || static_cast<std::size_t> (x.rows ()) != n)
     throw std::invalid_argument ("quadricDisplacement: signals of the wrong size");
-  const bool robust = std::isfinite (noise) && noise > 0.0;
+  if (!std::isfinite (noise) || !(noise > 0.0))
+    noise = 0.0;  // not robust
+  const bool blend = projection == QuadricProjection::BLENDED;
+  // With a noise level, a point moves along a normal by at most the smoothing's own
+  // move plus three noise levels: a fit that still goes astray cannot throw it away.
+  const auto limit = [&] (std::size_t i) {
+    return noise > 0.0 ? (f.row (i) - x.row (i)).norm () + 3.0 * noise : 0.0;
+  };
   Signal3 out = x;
+  std::vector<Patch> patches (blend ? n : 0);
   detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
     std::vector<VertexIndex> ring;
     std::vector<Basis> phi;
     std::vector<double> height, weight;
     detail::TwoRing two_ring;
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-    Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt;
     for (std::size_t i = begin; i < end; ++i)
     {
       two_ring.collect (graph, i, ring);
-      if (ring.size () < 3)
-        continue;
-      eig.computeDirect (detail::ringCovariance (x, ring, i));
-      const Eigen::Vector3d normal = eig.eigenvectors ().col (0);
-      const Eigen::Vector3d origin = x.row (i).transpose ();
-      const Eigen::Vector3d from_f = f.row (i).transpose () - origin;
-      const double f_height = from_f.dot (normal);
-      const double radius = std::sqrt (eig.eigenvalues ()(2) + eig.eigenvalues ()(1));
-      if (ring.size () < kQuadricMinimumRing || !(radius > 0.0))
+      Patch patch = fitPatch (x, ring, i, noise, phi, height, weight);
+      if (blend)
+        patches[i] = patch;
+      else if (patch.valid ())  // else keeps x_i
       {
-        out.row (i) = f.row (i) - f_height * normal.transpose ();  // the plane through x_i
-        continue;
+        const Eigen::Vector3d fi = f.row (i).transpose ();
+        out.row (i) = (fi + patch.move (fi, limit (i)) * patch.normal).transpose ();
       }
-      const Eigen::Vector3d u = eig.eigenvectors ().col (2) / radius;
-      const Eigen::Vector3d v = eig.eigenvectors ().col (1) / radius;
-      phi.resize (ring.size ());
-      height.resize (ring.size ());
-      weight.assign (ring.size (), 1.0);
-      double support = 0.0;  // the patch's largest tangential distance (squared)
-      for (std::size_t r = 0; r < ring.size (); ++r)
+    }
+  });
+  if (!blend)
+    return out;
+  // Each point onto the weighted mean of its own and its two rings' surfaces: a patch
+  // counts by how close the smoothed point x_i lies to its centre (tangentially) and,
+  // robustly, to its surface, so that a patch of another sheet drops out.
+  detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
+    std::vector<VertexIndex> ring;
+    detail::TwoRing two_ring;
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const Patch &own = patches[i];
+      if (!own.valid ())
+        continue;  // keeps x_i
+      two_ring.collect (graph, i, ring);
+      const Eigen::Vector3d fi = f.row (i).transpose ();
+      const Eigen::Vector3d xi = x.row (i).transpose ();
+      const double reach = limit (i);
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero ();
+      double total = 0.0;
+      for (VertexIndex j : ring)
       {
-        const Eigen::Vector3d d = (x.row (ring[r])).transpose () - origin;
-        const double a = d.dot (u), b = d.dot (v);
-        phi[r] = quadricBasis (a, b);
-        height[r] = d.dot (normal);
-        support = std::max (support, a * a + b * b);
-      }
-      Basis q = Basis::Zero ();
-      bool fitted = false;
-      // Robust: the first weights come from the plane through x_i (q = 0), so that a
-      // point between two sheets starts on its own side.
-      for (int iteration = 0; iteration < (robust ? kRobustIterations : 1); ++iteration)
-      {
-        if (robust)
-          for (std::size_t r = 0; r < ring.size (); ++r)
-          {
-            const double t = (height[r] - phi[r].dot (q)) / noise;
-            weight[r] = std::exp (-0.5 * t * t);
-          }
-        Eigen::Matrix<double, 6, 6> normal_matrix = Eigen::Matrix<double, 6, 6>::Zero ();
-        Basis rhs = Basis::Zero ();
-        for (std::size_t r = 0; r < ring.size (); ++r)
+        const Patch &patch = patches[j];
+        if (!patch.valid ())
+          continue;
+        double a, b;
+        patch.coordinates (xi, a, b);
+        double exponent = (a * a + b * b) / (2.0 * kBlendReach * kBlendReach);
+        if (noise > 0.0)
         {
-          // The full outer product: a fixed 6 x 6 that Eigen unrolls, several times
-          // faster than its generic rank update of a triangle.
-          normal_matrix.noalias () += (weight[r] * phi[r]) * phi[r].transpose ();
-          rhs += weight[r] * height[r] * phi[r];
+          const double t = (patch.height (a, b) - (xi - patch.origin).dot (patch.normal)) / noise;
+          exponent += 0.5 * t * t;
         }
-        ldlt.compute (normal_matrix);
-        if (ldlt.info () != Eigen::Success || !(ldlt.rcond () > 1e-10))
-          break;  // too few points keep weight: keep the last fit
-        const Basis solved = ldlt.solve (rhs);
-        if (!solved.allFinite ())
-          break;
-        q = solved;
-        fitted = true;
+        const double w = std::exp (-exponent);
+        sum += w * (fi + patch.move (fi, reach) * patch.normal);
+        total += w;
       }
-      // The quadric is evaluated where f_i projects, pulled back onto the patch when it
-      // lies outside: a patch much smaller than f_i's distance to x_i (the points of a
-      // piecewise-constant TV estimate, collapsed together) must not be extrapolated.
-      double fa = from_f.dot (u), fb = from_f.dot (v);
-      const double reach = fa * fa + fb * fb;
-      if (reach > support)
-      {
-        const double pull = support > 0.0 ? std::sqrt (support / reach) : 0.0;
-        fa *= pull;
-        fb *= pull;
-      }
-      const double target = fitted ? quadricBasis (fa, fb).dot (q) : 0.0;  // else the plane
-      // And with a noise level, the move along the normal stays within the smoothing's
-      // own move plus three noise levels: a fit that still goes astray cannot throw the
-      // point away.
-      double move = target - f_height;
-      if (robust)
-      {
-        const double limit = from_f.norm () + 3.0 * noise;
-        move = std::clamp (move, -limit, limit);
-      }
-      out.row (i) = f.row (i) + move * normal.transpose ();
+      // When every patch ignores it, its own surface.
+      const Eigen::Vector3d merged = total > 0.0 ? Eigen::Vector3d (sum / total)
+                                                 : Eigen::Vector3d (fi + own.move (fi, reach) * own.normal);
+      out.row (i) = merged.transpose ();
     }
   });
   return out;

@@ -28,6 +28,13 @@ estimateNormals (const PointGraph &graph, const Signal3 &points, int num_threads
 Signal3
 normalDisplacement (const Signal3 &f, const Signal3 &x, const Signal3 &normals);
 
+/** \brief Which local surfaces a point moves onto in quadricDisplacement. */
+enum class QuadricProjection
+{
+  OWN_PATCH,  ///< the quadric fitted around the point's own vertex
+  BLENDED     ///< the weighted mean of the quadrics around it (default of the filters)
+};
+
 /** \brief Moves every point of f along a normal onto a local second-order surface
  *  fitted to the estimate x: for vertex i, the points of x over its two graph rings
  *  give a frame (origin x_i, normal = direction of least variance) and a quadric height
@@ -35,15 +42,24 @@ normalDisplacement (const Signal3 &f, const Signal3 &x, const Signal3 &normals);
  *  weights the points by exp(-r^2 / (2 noise^2)) of their residual r to the previous
  *  one (the first: to the plane through x_i), so that points of
  *  another sheet (the far side of a thin wall, the other face at a sharp edge) stop
- *  pulling the surface. The result is f_i moved along that normal to height h at its
- *  own (u, v): no tangential drift, and no flattening of curved surfaces (where the
- *  plane of normalDisplacement cuts chords). A vertex with fewer than 10 points in its
- *  rings falls back to the plane; with fewer than 3, it keeps x_i. f and x are in the
- *  graph's vertex order; the result is independent of the number of threads.
+ *  pulling the surface. With QuadricProjection::OWN_PATCH the result is f_i moved along
+ *  vertex i's normal to height h at its own (u, v): no tangential drift, and no
+ *  flattening of curved surfaces (where the plane of normalDisplacement cuts chords).
+ *  With QuadricProjection::BLENDED, f_i is moved so onto the patch of every vertex j of
+ *  its two rings (i included), and the result is the mean of those positions weighted
+ *  by exp(-d^2 / (2 (r_j / 2)^2) - e^2 / (2 noise^2)), d the tangential distance of x_i
+ *  from x_j, r_j the RMS tangential spread of j's rings, e the distance of x_i from j's
+ *  surface along its normal: overlapping fits average out their own noise (as patch
+ *  estimates are aggregated in image denoising), and a patch of another sheet drops
+ *  out. A vertex with fewer than 10 points in its rings has the plane as its surface;
+ *  with fewer than 3, none, and keeps x_i. Each move along a normal is limited, with a
+ *  noise level, to |f_i - x_i| plus three noise levels. f and x are in the graph's
+ *  vertex order; the result is independent of the number of threads.
  *  \throws std::invalid_argument when the sizes differ. */
 Signal3
 quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x, double noise,
-                     int num_threads = 0);
+                     int num_threads = 0,
+                     QuadricProjection projection = QuadricProjection::OWN_PATCH);
 
 /** \brief Parameters of surfaceOffsets. */
 struct SurfaceOffsetParams

@@ -195,7 +195,7 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
                  "not move); each is smoothed on its own.\n",
                  name.c_str (), count, components_.count, components_.largest,
                  components_.isolated);
-    const bool quadric = normal_displacement_ && local_surface_ == LocalSurface::QUADRIC;
+    const bool quadric = normal_displacement_ && local_surface_ != LocalSurface::PLANE;
     double noise = 0.0;
     if (automatic_gamma_ || quadric)
     {
@@ -228,7 +228,10 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
       core::Signal3 x =
           shrinkage_correction_ ? core::Signal3 (2.0 * smoothed - solve (smoothed)) : smoothed;
       if (quadric)
-        x = core::quadricDisplacement (g, signal, x, noise, num_threads_);
+        x = core::quadricDisplacement (g, signal, x, noise, num_threads_,
+                                       local_surface_ == LocalSurface::QUADRIC
+                                           ? core::QuadricProjection::OWN_PATCH
+                                           : core::QuadricProjection::BLENDED);
       else if (normal_displacement_)
         x = core::normalDisplacement (signal, x, core::estimateNormals (g, smoothed, num_threads_));
       return x;

@@ -246,9 +246,12 @@ configureSmoother (pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &filter,
     else if (name == "normal_displacement")
       filter.setNormalDisplacement (boolean (p));
     else if (name == "local_surface")
-      filter.setLocalSurface (text (p, {"plane", "quadric"}) == "plane"
-                                  ? pcl_graph_denoise::LocalSurface::PLANE
-                                  : pcl_graph_denoise::LocalSurface::QUADRIC);
+    {
+      const std::string surface = text (p, {"plane", "quadric", "blended"});
+      filter.setLocalSurface (surface == "plane"     ? pcl_graph_denoise::LocalSurface::PLANE
+                              : surface == "quadric" ? pcl_graph_denoise::LocalSurface::QUADRIC
+                                                     : pcl_graph_denoise::LocalSurface::BLENDED_QUADRICS);
+    }
     else if (name == "shrinkage_correction")
       filter.setShrinkageCorrection (boolean (p));
     else if (name == "tolerance")
