@@ -176,8 +176,11 @@ parseValue (const ParameterSpec &spec, const std::string &text)
       throw invalid ("expected 0 or 1");
     return value;
   case ValueType::SURFACE:
-    if (text != "plane" && text != "quadric" && text != "blended")
+  {
+    LocalSurface surface;
+    if (!localSurfaceFromName (text, surface))
       throw invalid ("expected plane, quadric or blended");
+  }
     return value;
   case ValueType::SOLVER:
     if (text != "cg" && text != "cholmod")
@@ -542,9 +545,7 @@ usage (const std::string &program)
                                 : both (tikhonov.getGamma (), tv.getGamma ());
   const std::string passes = both (tikhonov.getGraphIterations (), tv.getGraphIterations ());
   const std::string normal = both (tikhonov.getNormalDisplacement (), tv.getNormalDisplacement ());
-  const char *surface = tv.getLocalSurface () == LocalSurface::PLANE     ? "plane"
-                        : tv.getLocalSurface () == LocalSurface::QUADRIC ? "quadric"
-                                                                         : "blended";
+  const char *surface = localSurfaceName (tv.getLocalSurface ());
   const std::string twicing =
       both (tikhonov.getShrinkageCorrection (), tv.getShrinkageCorrection ());
   const std::string tolerance = both (tikhonov.getTolerance (), tv.getTolerance ());

@@ -194,9 +194,11 @@ configure (pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &filter, const Step 
     else if (name == "normal_displacement")
       filter.setNormalDisplacement (v.number != 0.0);
     else if (name == "local_surface")
-      filter.setLocalSurface (v.text == "plane"     ? pcl_graph_denoise::LocalSurface::PLANE
-                              : v.text == "quadric" ? pcl_graph_denoise::LocalSurface::QUADRIC
-                                                    : pcl_graph_denoise::LocalSurface::BLENDED_QUADRICS);
+    {
+      pcl_graph_denoise::LocalSurface surface = filter.getLocalSurface ();
+      pcl_graph_denoise::tools::localSurfaceFromName (v.text, surface);  // checked when parsed
+      filter.setLocalSurface (surface);
+    }
     else if (name == "shrinkage_correction")
       filter.setShrinkageCorrection (v.number != 0.0);
     else if (name == "tolerance")

@@ -7,8 +7,11 @@
  */
 #pragma once
 
+#include <pcl_graph_denoise/graph_smoothing.h>
+
 #include <cstddef>
 #include <limits>
+#include <string>
 
 namespace pcl_graph_denoise {
 namespace tools {
@@ -75,6 +78,36 @@ megabytesToBytes (double megabytes)
   return bytes >= double (std::numeric_limits<std::size_t>::max ())
              ? std::numeric_limits<std::size_t>::max ()
              : static_cast<std::size_t> (bytes);
+}
+
+/** \brief The name of a local surface in an option or parameter value ("plane",
+ *  "quadric", "blended"). */
+inline const char *
+localSurfaceName (LocalSurface surface)
+{
+  switch (surface)
+  {
+  case LocalSurface::PLANE:
+    return "plane";
+  case LocalSurface::QUADRIC:
+    return "quadric";
+  case LocalSurface::BLENDED_QUADRICS:
+    break;
+  }
+  return "blended";
+}
+
+/** \brief The local surface named `name` (localSurfaceName); false for another name. */
+inline bool
+localSurfaceFromName (const std::string &name, LocalSurface &surface)
+{
+  for (const LocalSurface s : {LocalSurface::PLANE, LocalSurface::QUADRIC, LocalSurface::BLENDED_QUADRICS})
+    if (name == localSurfaceName (s))
+    {
+      surface = s;
+      return true;
+    }
+  return false;
 }
 
 }  // namespace tools

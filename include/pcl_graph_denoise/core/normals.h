@@ -45,7 +45,7 @@ enum class QuadricProjection
  *  pulling the surface. With QuadricProjection::OWN_PATCH the result is f_i moved along
  *  vertex i's normal to height h at its own (u, v): no tangential drift, and no
  *  flattening of curved surfaces (where the plane of normalDisplacement cuts chords).
- *  With QuadricProjection::BLENDED, f_i is moved so onto the patch of every vertex j of
+ *  With QuadricProjection::BLENDED, f_i is moved likewise onto the patch of every vertex j of
  *  its two rings (i included), and the result is the mean of those positions weighted
  *  by exp(-d^2 / (2 (r_j / 2)^2) - e^2 / (2 noise^2)), d the tangential distance of x_i
  *  from x_j, r_j the RMS tangential spread of j's rings, e the distance of x_i from j's

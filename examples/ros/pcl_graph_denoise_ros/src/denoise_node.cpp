@@ -247,10 +247,9 @@ configureSmoother (pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &filter,
       filter.setNormalDisplacement (boolean (p));
     else if (name == "local_surface")
     {
-      const std::string surface = text (p, {"plane", "quadric", "blended"});
-      filter.setLocalSurface (surface == "plane"     ? pcl_graph_denoise::LocalSurface::PLANE
-                              : surface == "quadric" ? pcl_graph_denoise::LocalSurface::QUADRIC
-                                                     : pcl_graph_denoise::LocalSurface::BLENDED_QUADRICS);
+      pcl_graph_denoise::LocalSurface surface = filter.getLocalSurface ();
+      pcl_graph_denoise::tools::localSurfaceFromName (text (p, {"plane", "quadric", "blended"}), surface);
+      filter.setLocalSurface (surface);
     }
     else if (name == "shrinkage_correction")
       filter.setShrinkageCorrection (boolean (p));
