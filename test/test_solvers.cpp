@@ -325,6 +325,55 @@ TEST (NoiseLevel, RecoversTheNoiseAndTheSpacingOfSmoothSurfaces)
   EXPECT_THROW (estimateNoise (g, Signal3::Zero (10, 3)), std::invalid_argument);
 }
 
+TEST (NoiseLevel, MeasuresHowTheSurfaceBends)
+{
+  // A sphere of radius r reads 1 / (4 sqrt(3) r) (heights a^2 / 2r over a uniform disc),
+  // whatever the noise and the density; a plane only the scatter of its noise.
+  for (double radius : {0.5, 2.0})
+    for (std::size_t n : {10000ul, 50000ul})
+    {
+      const NoiseEstimate s = noiseOf (toMatrix (synthetic::noisySphere (n, radius, 0.005 * radius, 8)));
+      const double expected = 1.0 / (4.0 * std::sqrt (3.0) * radius);
+      EXPECT_NEAR (s.curvature, expected, 0.15 * expected) << "sphere r " << radius << ", " << n;
+    }
+  const double sphere = noiseOf (toMatrix (synthetic::noisySphere (20000, 1.0, 0.01, 9))).curvature;
+  const NoiseEstimate plane = noiseOf (toMatrix (synthetic::noisyPlane (20000, 0.01, 9)));
+  EXPECT_GT (plane.curvature, 0.0);
+  EXPECT_LT (plane.curvature, 0.5 * sphere);
+  // Detail a few spacings wide bends far more than the sphere.
+  PointMatrix bumps = toMatrix (synthetic::noisyPlane (20000, 0.002, 10));
+  for (Eigen::Index i = 0; i < bumps.rows (); ++i)
+    bumps (i, 2) += 0.03f * std::sin (40.0f * bumps (i, 0)) * std::sin (40.0f * bumps (i, 1));
+  EXPECT_GT (noiseOf (bumps).curvature, 4.0 * sphere);
+  // In 1 / the points' unit, and independent of the threads.
+  const PointMatrix m = toMatrix (synthetic::noisySphere (20000, 1.0, 0.01, 6));
+  EXPECT_NEAR (noiseOf (1000.0f * m).curvature, noiseOf (m).curvature / 1000.0, 1e-3 * noiseOf (m).curvature / 1000.0);
+  EXPECT_EQ (noiseOf (m, 1).curvature, noiseOf (m, 2).curvature);
+  // Not measured without edges or on one spot.
+  EXPECT_EQ (noiseOf (PointMatrix::Zero (3, 3)).curvature, 0.0);
+  EXPECT_EQ (noiseOf (PointMatrix::Ones (100, 3)).curvature, 0.0);
+}
+
+TEST (DefaultGamma, DetailFactorFollowsTheDetailLengthInSpacings)
+{
+  const PointMatrix m = toMatrix (synthetic::noisySphere (20000, 1.0, 0.01, 6));
+  const PointGraph a = buildKnnGraph (m), b = buildKnnGraph (1000.0f * m);
+  const double h = a.spacing;
+  // Detail length 1 / curvature: 40 spacings give Tikhonov 1, 30 give TV 1.
+  EXPECT_NEAR (detailGammaFactor (a, 1.0 / (40.0 * h), SmoothingKind::TIKHONOV), 1.0, 1e-12);
+  EXPECT_NEAR (detailGammaFactor (a, 1.0 / (30.0 * h), SmoothingKind::TOTAL_VARIATION), 1.0, 1e-12);
+  EXPECT_NEAR (detailGammaFactor (a, 1.0 / (160.0 * h), SmoothingKind::TIKHONOV), 4.0, 1e-12);
+  EXPECT_NEAR (detailGammaFactor (a, 1.0 / (20.0 * h), SmoothingKind::TIKHONOV_CHOLMOD), 0.5, 1e-12);
+  // Unit invariant: the same curvature in 1 / millimetres.
+  EXPECT_NEAR (detailGammaFactor (b, 1.0 / (160.0 * h) / 1000.0, SmoothingKind::TIKHONOV), 4.0, 1e-4);
+  // Held within [1/8, 16]; 1 when not measured.
+  EXPECT_EQ (detailGammaFactor (a, 1e-9 / h, SmoothingKind::TIKHONOV), 16.0);
+  EXPECT_EQ (detailGammaFactor (a, 1e3 / h, SmoothingKind::TOTAL_VARIATION), 0.125);
+  for (double bad : {0.0, -1.0, std::nan (""), std::numeric_limits<double>::infinity ()})
+    EXPECT_EQ (detailGammaFactor (a, bad, SmoothingKind::TIKHONOV), 1.0) << bad;
+  EXPECT_EQ (detailGammaFactor (PointGraph{}, 1.0, SmoothingKind::TIKHONOV), 1.0);
+}
+
 TEST (DefaultGamma, IsUnitInvariantAndGrowsWithNoise)
 {
   const PointMatrix m = toMatrix (synthetic::noisySphere (20000, 1.0, 0.01, 6));

@@ -26,6 +26,14 @@ namespace {
 constexpr double kTikhonovC = 20.0;
 constexpr double kTikhonovExponent = 1.5;
 constexpr double kTotalVariationC = 10.0;
+// The refined filters' detail term (detailGammaFactor): the best multiple of the rule
+// per cloud goes as the detail length over the spacing, divided by these (fitted to the
+// calibration meshes at 2,500 to 50,000 points and the PU-GAN meshes at 10,000 and
+// 50,000 together; docs/evaluation.md, section 5).
+constexpr double kTikhonovDetailSpacings = 40.0;
+constexpr double kTotalVariationDetailSpacings = 30.0;
+constexpr double kDetailFactorMin = 0.125;
+constexpr double kDetailFactorMax = 16.0;
 
 double
 meanOf (const std::vector<double> &v)
@@ -186,6 +194,17 @@ defaultTotalVariationGamma (const PointGraph &graph, double noise)
   if (!(mean_root > 0.0) || !(graph.spacing > 0.0) || !(noise > 0.0))
     return 0.0;
   return kTotalVariationC * noise / mean_root;
+}
+
+double
+detailGammaFactor (const PointGraph &graph, double curvature, SmoothingKind kind)
+{
+  if (!(curvature > 0.0) || !std::isfinite (curvature) || !(graph.spacing > 0.0))
+    return 1.0;
+  const double spacings = kind == SmoothingKind::TOTAL_VARIATION ? kTotalVariationDetailSpacings
+                                                                 : kTikhonovDetailSpacings;
+  const double factor = 1.0 / (curvature * graph.spacing * spacings);
+  return std::clamp (factor, kDetailFactorMin, kDetailFactorMax);
 }
 
 } // namespace core

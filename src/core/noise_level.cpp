@@ -25,6 +25,9 @@ namespace {
 constexpr int kNeighbours = 10;          // for the mean k-NN distance behind the ball
 constexpr std::size_t kSamples = 20000;  // a median needs no more
 constexpr double kBallRadius = 4.0;      // in mean k-NN distances
+constexpr std::size_t kCurvatureSamples = 4000;  // a mean needs no more
+constexpr double kCurvatureRadius = 6.0;         // in mean k-NN distances
+constexpr std::size_t kCurvatureMinimumBall = 12;
 
 /** Median two-ring residual / spacing on noisy planes (160,000 points, k = 10, three
  *  seeds; bench/calibrate_gamma --noise-table), against noise / spacing. */
@@ -73,6 +76,56 @@ median (std::vector<double> values)
   const std::size_t mid = values.size () / 2;
   std::nth_element (values.begin (), values.begin () + mid, values.end ());
   return values[mid];
+}
+
+/** The mean over up to kCurvatureSamples points (evenly along the order) of how far the
+ *  surface within `radius` of the point bends away from a plane, beyond the noise:
+ *  sqrt(max(0, smallest principal variance of the ball - level^2)) / radius^2 (on a
+ *  sphere of radius R, 1 / (4 sqrt(3) R): heights r^2 / 2R over a uniform disc); balls
+ *  of fewer than kCurvatureMinimumBall points do not count. 0 when no ball counts. */
+double
+meanBending (const detail::KdTree &tree, const Signal3 &points, double radius, double level,
+             int num_threads)
+{
+  const std::size_t n = static_cast<std::size_t> (points.rows ());
+  if (!(radius > 0.0) || !std::isfinite (radius))
+    return 0.0;
+  const std::size_t stride = std::max<std::size_t> (1, n / kCurvatureSamples);
+  const std::size_t samples = (n + stride - 1) / stride;
+  std::vector<double> bending (samples, -1.0);
+  detail::parallelFor (samples, num_threads, [&] (std::size_t begin, std::size_t end) {
+    std::vector<VertexIndex> within;
+    std::vector<std::pair<VertexIndex, float>> scratch;
+    for (std::size_t sample = begin; sample < end; ++sample)
+    {
+      const std::size_t i = sample * stride;
+      within.clear ();
+      tree.othersWithin (static_cast<VertexIndex> (i), static_cast<float> (radius), within, scratch);
+      within.push_back (static_cast<VertexIndex> (i));
+      if (within.size () < kCurvatureMinimumBall)
+        continue;
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero ();
+      for (VertexIndex j : within)
+        mean += points.row (j).transpose ();
+      mean /= double (within.size ());
+      Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero ();
+      for (VertexIndex j : within)
+      {
+        const Eigen::Vector3d d = points.row (j).transpose () - mean;
+        covariance.noalias () += d * d.transpose ();
+      }
+      covariance /= double (within.size ());
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+      eig.computeDirect (covariance, Eigen::EigenvaluesOnly);
+      bending[sample] = std::sqrt (std::max (0.0, eig.eigenvalues () (0) - level * level)) / (radius * radius);
+    }
+  });
+  double sum = 0.0;
+  std::size_t counted = 0;
+  for (double b : bending)
+    if (b >= 0.0)
+      sum += b, ++counted;
+  return counted > 0 ? sum / double (counted) : 0.0;
 }
 
 } // namespace
@@ -179,6 +232,7 @@ estimateNoise (const PointGraph &graph, const Signal3 &points, int num_threads)
   const double spacing = spacingAt (level);
   estimate.level = level;
   estimate.spacing = spacing;
+  estimate.curvature = meanBending (tree, points, kCurvatureRadius * knn_spacing, level, num_threads);
   return estimate;
 }
 

@@ -25,6 +25,15 @@ struct NoiseEstimate
    *  smallest principal standard deviation of the vertex, its graph neighbours and
    *  theirs (scaled by sqrt(m / (m - 3)) for m points), before the correction below. */
   double two_ring = 0.0;
+  /** How much the surface bends within reach of the smoothing, in 1 / the points' unit:
+   *  the mean over up to 4,000 sampled vertices of sqrt(max(0, v - level^2)) / R^2, v
+   *  the smallest principal variance of the points within R = 6 mean 10-NN distances.
+   *  On a sphere of radius r it reads about 1 / (4 sqrt(3) r); on a plane only the
+   *  noise's own scatter; detail finer than the ball (a period under about 12 spacings)
+   *  it reads by its amplitude only, as gentle bending. Its inverse is the detail length
+   *  behind core::detailGammaFactor. 0 when it was not measured. (A second, narrower
+   *  ball for fine detail was tried: at 3 spacings the noise's scatter swamps it.) */
+  double curvature = 0.0;
 };
 
 /** \brief Robust estimate of the noise level, and of the surface spacing it needs.

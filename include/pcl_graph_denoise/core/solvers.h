@@ -19,6 +19,7 @@
  */
 
 #include <pcl_graph_denoise/core/graph.h>
+#include <pcl_graph_denoise/core/memory.h>
 
 #include <functional>
 #include <string>
@@ -119,6 +120,19 @@ defaultTikhonovGamma (const PointGraph &graph, double noise);
  *  Calibrated as defaultTikhonovGamma. 0 when the graph has no edges or no noise. */
 double
 defaultTotalVariationGamma (const PointGraph &graph, double noise);
+
+/** \brief The factor by which the refined filters (normals displacement onto local
+ *  quadrics) scale the rule's strength for the surface's detail: the detail length
+ *  1 / curvature (NoiseEstimate::curvature) in units of the graph's spacing, divided by
+ *  40 for Tikhonov and by 30 for total variation, held within [1/8, 16]. A surface that
+ *  stays smooth over many spacings (a sphere of 10,000 points: about 4) takes a stronger
+ *  smoothing than one with detail at a few spacings (the mechanical parts and statues
+ *  of the evaluation at 10,000 points: 1/4 to 1), and the same surface takes more when
+ *  sampled more densely. Measured as the best multiple of the rule per cloud on two sets
+ *  of meshes (docs/evaluation.md, section 5). 1 when the curvature was not measured
+ *  (<= 0) or the graph has no spacing. */
+double
+detailGammaFactor (const PointGraph &graph, double curvature, SmoothingKind kind);
 
 /** \brief A whole denoising pass at a strength gamma: the positions of the points of
  *  `graph` (one row per vertex) denoised, as the filters do (solve, refinements). */

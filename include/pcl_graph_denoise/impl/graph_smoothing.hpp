@@ -196,14 +196,15 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
                  name.c_str (), count, components_.count, components_.largest,
                  components_.isolated);
     const bool quadric = normal_displacement_ && local_surface_ != LocalSurface::PLANE;
-    double noise = 0.0;
+    core::NoiseEstimate estimate;
     if (automatic_gamma_ || quadric)
     {
       // Re-estimated on each pass: the noise left after the previous one.
-      noise = core::estimateNoise (graph, f, num_threads_).level;
+      estimate = core::estimateNoise (graph, f, num_threads_);
       if (pass == 0)
-        estimated_noise_ = noise;
+        estimated_noise_ = estimate.level;
     }
+    const double noise = estimate.level;
     // One denoising at a strength: the solve, twicing and the local surface. The report
     // keeps the solves of the pass's own run; the selection's runs are not reported.
     const auto denoise = [&] (const core::PointGraph &g, const core::Signal3 &signal, double gamma,
@@ -238,7 +239,11 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
     };
     if (automatic_gamma_)
     {
-      used_gamma_ = automaticGamma (graph, noise) * (quadric ? detail::kQuadricGammaScale : 1.0);
+      // The refined filters scale the paper's rule for the surface's detail.
+      used_gamma_ = automaticGamma (graph, noise);
+      if (quadric)
+        used_gamma_ *= detail::kQuadricGammaScale *
+                       core::detailGammaFactor (graph, estimate.curvature, smoothingKind ());
       if (gamma_selection_ == GammaSelection::RISK_ESTIMATE)
       {
         core::RiskSelectionParams params;
