@@ -137,8 +137,9 @@ public:
    *  at the rule's gamma times 1/4, 1/2, ... 16 (then one step of sqrt 2 around the best)
    *  and keeps the one with the lowest Stein unbiased estimate of its error along the
    *  normals, which needs no ground truth (core::selectGammaByRisk). It follows what the
-   *  surface's detail allows, which the rule cannot see (less smoothing on thin parts,
-   *  more on smooth ones); it costs about 19 extra runs on at most 50,000 points (four
+   *  surface's detail allows at every scale, where the rule's detail term reads only
+   *  bending wider than about 12 spacings (less smoothing on thin parts, more on smooth
+   *  ones); it costs about 19 extra runs on at most 50,000 points (four
    *  blocks of the cloud when larger). Assumes noise of the same level everywhere. Where
    *  the noise is larger than the point spacing it chooses too little smoothing
    *  (docs/evaluation.md, section 5). Used only while gamma is automatic. */
@@ -180,7 +181,8 @@ public:
    *  that the overlapping fits average out their own noise (core::quadricDisplacement
    *  with core::QuadricProjection::BLENDED). LocalSurface::QUADRIC: onto its own vertex's
    *  quadric only, the previous default. With either, the data-derived gamma is half the
-   *  paper rule's (the fits remove noise themselves). LocalSurface::PLANE: the plane
+   *  paper rule's (the fits remove noise themselves) times the detail term
+   *  (core::detailGammaFactor). LocalSurface::PLANE: the plane
    *  through the smoothed point, normal from the fit of the smoothed points over two rings
    *  (core::normalDisplacement). All measured in docs/evaluation.md. */
   inline void

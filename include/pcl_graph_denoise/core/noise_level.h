@@ -26,7 +26,7 @@ struct NoiseEstimate
    *  theirs (scaled by sqrt(m / (m - 3)) for m points), before the correction below. */
   double two_ring = 0.0;
   /** How much the surface bends within reach of the smoothing, in 1 / the points' unit:
-   *  the mean over up to 4,000 sampled vertices of sqrt(max(0, v - level^2)) / R^2, v
+   *  the mean over every ⌊n / 4,000⌋-th vertex (4,000 to 8,000 balls) of sqrt(max(0, v - level^2)) / R^2, v
    *  the smallest principal variance of the points within R = 6 mean 10-NN distances.
    *  On a sphere of radius r it reads about 1 / (4 sqrt(3) r); on a plane only the
    *  noise's own scatter; detail finer than the ball (a period under about 12 spacings)
