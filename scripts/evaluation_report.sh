@@ -527,7 +527,7 @@ even leave more error than the noisy input (Tikhonov 2.82 against 1.25 at 1% and
 0.0792 / 0.0777 / 0.0996 to 0.0780 / 0.0765 / 0.0974 mm (Tikhonov; TV 0.0793 / 0.0778 / 0.0997
 to 0.0775 / 0.0759 / 0.0952), ahead of every peer on bun000, still behind jet on bun045 and
 bun090. Time per cloud (section 2's run, idle machine): Tikhonov 0.098 s at 10,000 points and
-0.38 s at 50,000, TV 0.14 and 0.81 s (the estimate of the bending adds one search over 4,000 to
+0.38 s at 50,000, TV 0.14 and 0.81 s (the estimate of the bending adds one search over at most
 8,000 balls).
 
 On a million points (`build/bench/bench_smoothing 1000000`, noisy unit sphere, σ = 1%, the
@@ -539,8 +539,8 @@ the detail term below answers it) and the smoothed points the patches are fitted
 
 **A detail term in the rule (the default now).** The measure of detail that the sweeps above
 asked for, in a unit-free form: the length L over which the surface bends, read on the noisy
-cloud (`core::estimateNoise`, `NoiseEstimate::curvature` = 1/L). Around every ⌊n / 4,000⌋-th
-vertex (4,000 to 8,000 balls), the points within R = 6 mean 10-NN distances (at least 12; 10
+cloud (`core::estimateNoise`, `NoiseEstimate::curvature` = 1/L). Around every vertex of a cloud
+under 8,000 points, else every ⌊n / 4,000⌋-th (4,000 to 6,000 balls), the points within R = 6 mean 10-NN distances (at least 12; 10
 whatever the graph's k) give a covariance whose
 smallest eigenvalue, less σ̂², is the squared thickness t of the patch; a surface of curvature κ
 has t ≈ κR² / (4√3), and 1/L is the mean of t / R² (a sphere of radius r reads L = 4√3 r,

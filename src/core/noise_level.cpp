@@ -78,7 +78,8 @@ median (std::vector<double> values)
   return values[mid];
 }
 
-/** The mean over up to kCurvatureSamples points (evenly along the order) of how far the
+/** The mean over every (n / kCurvatureSamples)-th point, rounded down (every point when
+ *  n < 2 kCurvatureSamples; else kCurvatureSamples to 1.5 times that), of how far the
  *  surface within `radius` of the point bends away from a plane, beyond the noise:
  *  sqrt(max(0, smallest principal variance of the ball - level^2)) / radius^2 (on a
  *  sphere of radius R, 1 / (4 sqrt(3) R): heights r^2 / 2R over a uniform disc); balls
@@ -117,7 +118,8 @@ meanBending (const detail::KdTree &tree, const Signal3 &points, double radius, d
       covariance /= double (within.size ());
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
       eig.computeDirect (covariance, Eigen::EigenvaluesOnly);
-      bending[sample] = std::sqrt (std::max (0.0, eig.eigenvalues () (0) - level * level)) / (radius * radius);
+      bending[sample] = std::sqrt (std::max (0.0, eig.eigenvalues () (0) - level * level)) /
+                        (radius * radius);
     }
   });
   double sum = 0.0;
@@ -232,7 +234,8 @@ estimateNoise (const PointGraph &graph, const Signal3 &points, int num_threads)
   const double spacing = spacingAt (level);
   estimate.level = level;
   estimate.spacing = spacing;
-  estimate.curvature = meanBending (tree, points, kCurvatureRadius * knn_spacing, level, num_threads);
+  estimate.curvature =
+      meanBending (tree, points, kCurvatureRadius * knn_spacing, level, num_threads);
   return estimate;
 }
 

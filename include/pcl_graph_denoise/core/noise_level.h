@@ -26,8 +26,10 @@ struct NoiseEstimate
    *  theirs (scaled by sqrt(m / (m - 3)) for m points), before the correction below. */
   double two_ring = 0.0;
   /** How much the surface bends within reach of the smoothing, in 1 / the points' unit:
-   *  the mean over every ⌊n / 4,000⌋-th vertex (4,000 to 8,000 balls) of sqrt(max(0, v - level^2)) / R^2, v
-   *  the smallest principal variance of the points within R = 6 mean 10-NN distances.
+   *  the mean over every vertex of a cloud under 8,000 points, else every (n / 4,000)-th
+   *  rounded down (4,000 to 6,000 balls), of
+   *  sqrt(max(0, v - level^2)) / R^2, v the smallest principal variance of the points
+   *  within R = 6 mean 10-NN distances.
    *  On a sphere of radius r it reads about 1 / (4 sqrt(3) r); on a plane only the
    *  noise's own scatter; detail finer than the ball (a period under about 12 spacings)
    *  it reads by its amplitude only, as gentle bending. Its inverse is the detail length
