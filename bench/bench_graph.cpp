@@ -49,14 +49,7 @@ using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 
 namespace {
 
-core::PointMatrix
-toMatrix (const Cloud &cloud)
-{
-  core::PointMatrix m (cloud.size (), 3);
-  for (std::size_t i = 0; i < cloud.size (); ++i)
-    m.row (i) = cloud[i].getVector3fMap ().transpose ();
-  return m;
-}
+using synthetic::toMatrix;
 
 /** Runs body(i) for i in [0, n) on `threads` threads, blocks of 1024. */
 template <typename Body>

@@ -45,14 +45,7 @@ constexpr bool kSanitized = false;
 constexpr bool kSanitized = false;
 #endif
 
-core::PointMatrix
-toMatrix (const Cloud &cloud)
-{
-  core::PointMatrix m (cloud.size (), 3);
-  for (std::size_t i = 0; i < cloud.size (); ++i)
-    m.row (i) = cloud[i].getVector3fMap ().transpose ();
-  return m;
-}
+using synthetic::toMatrix;
 
 } // namespace
 

@@ -369,9 +369,7 @@ namespace {
 double
 detailFactorOf (const synthetic::Cloud &cloud, core::SmoothingKind kind)
 {
-  core::PointMatrix points (static_cast<Eigen::Index> (cloud.size ()), 3);
-  for (std::size_t i = 0; i < cloud.size (); ++i)
-    points.row (static_cast<Eigen::Index> (i)) = cloud[i].getVector3fMap ().transpose ();
+  const core::PointMatrix points = synthetic::toMatrix (cloud);
   const core::PointGraph graph = core::buildKnnGraph (points);
   core::Signal3 f (static_cast<Eigen::Index> (graph.numVertices ()), 3);
   for (std::size_t v = 0; v < graph.numVertices (); ++v)

@@ -29,14 +29,7 @@ using namespace pcl_graph_denoise::core;
 
 namespace {
 
-PointMatrix
-toMatrix (const synthetic::Cloud &cloud)
-{
-  PointMatrix m (cloud.size (), 3);
-  for (std::size_t i = 0; i < cloud.size (); ++i)
-    m.row (i) = cloud[i].getVector3fMap ().transpose ();
-  return m;
-}
+using synthetic::toMatrix;
 
 /** The points of a graph's cloud in its vertex order. */
 Signal3

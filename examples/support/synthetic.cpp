@@ -13,6 +13,15 @@
 namespace pcl_graph_denoise {
 namespace synthetic {
 
+core::PointMatrix
+toMatrix (const Cloud &cloud)
+{
+  core::PointMatrix m (static_cast<Eigen::Index> (cloud.size ()), 3);
+  for (std::size_t i = 0; i < cloud.size (); ++i)
+    m.row (static_cast<Eigen::Index> (i)) = cloud[i].getVector3fMap ().transpose ();
+  return m;
+}
+
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;

@@ -7,6 +7,8 @@
 /* Seeded synthetic clouds with known surfaces, shared by the demo, the benchmarks
  * and the tests (the project ships no third-party data of its own). */
 
+#include <pcl_graph_denoise/core/graph.h>
+
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
@@ -18,6 +20,10 @@ namespace pcl_graph_denoise {
 namespace synthetic {
 
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
+
+/** The cloud's positions as the numerical core takes them, one row per point. */
+core::PointMatrix
+toMatrix (const Cloud &cloud);
 
 /** n points uniform on a sphere of the given radius at the origin, plus isotropic
  *  Gaussian noise of standard deviation `noise`. */
