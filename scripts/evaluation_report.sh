@@ -246,7 +246,7 @@ points, σ = 0.01, points within 0.1 of an edge) the paper's filters give 0.0075
 0.0060 (TV); the plane defaults gave 0.0045 and 0.0045, the quadric defaults 0.0036 and 0.0036,
 the blended quadrics (end of this section) 0.0034 and 0.0035, and with the detail term of the
 derived γ (the default now, end of this section) 0.00375 and 0.00402
-(`ctest -R PaperTotalVariationKeepsCubeEdges`): all sharper than the paper's TV, but the default
+(`ctest -R TotalVariationKeepsCubeEdges`): all sharper than the paper's TV, but the default
 TV is not sharper than the default Tikhonov. The detail term reads the cube's flat faces and
 raises γ (TV more than Tikhonov, whose constant is larger), which rounds the edges a little more
 while the faces get flatter.

@@ -95,6 +95,10 @@ largestMoveInSpacings (const pcl::PointCloud<pcl::PointXYZ>::ConstPtr &cloud)
   pcl::PointCloud<pcl::PointXYZ> out;
   filter.filter (out);
   EXPECT_EQ (out.size (), cloud->size ());
+  // The solver converges on these graphs of many weakly linked pieces (an accelerated
+  // TV step tuned to the mean vertex once diverged on the fountain: a gap of 1.9 after
+  // 500 iterations, points thrown 12 spacings).
+  EXPECT_TRUE (filter.getSolverReport ().converged) << filter.getSolverReport ().residual;
   if (out.size () != cloud->size ())
     return 0.0;
   pcl::KdTreeFLANN<pcl::PointXYZ> tree;

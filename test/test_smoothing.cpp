@@ -286,7 +286,7 @@ paperFilter (Filter &filter)
   filter.setShrinkageCorrection (false);
 }
 
-TEST (SmoothingQuality, PaperTotalVariationKeepsCubeEdgesSharperThanPaperTikhonov)
+TEST (SmoothingQuality, TotalVariationKeepsCubeEdgesSharperThanTikhonov)
 {
   auto cloud = std::make_shared<synthetic::Cloud> (synthetic::noisyCube (30000, 0.01, 35));
   // Points within 0.1 of an edge of the cube: two coordinates near +-1.
@@ -313,6 +313,8 @@ TEST (SmoothingQuality, PaperTotalVariationKeepsCubeEdgesSharperThanPaperTikhono
   std::printf ("cube edges, defaults: Tikhonov %.5f, TV %.5f\n", rt, rv);
   EXPECT_LT (rt, 0.85 * v);
   EXPECT_LT (rv, 0.85 * v);
+  // And TV's defaults keep the edges sharper than Tikhonov's.
+  EXPECT_LT (rv, rt);
 }
 
 TEST (SmoothingQuality, NormalDisplacementMovesPointsAcrossThePlaneOnly)
@@ -364,17 +366,27 @@ TEST (SmoothingQuality, ShrinkageCorrectionKeepsTheSphereRadius)
 
 namespace {
 
-/** The detail factor (core::detailGammaFactor) the refined filters apply on a cloud of
- *  finite points, from the default graph as the filters build it. */
-double
-detailFactorOf (const synthetic::Cloud &cloud, core::SmoothingKind kind)
+/** The terms by which the refined filters scale the rule on a cloud of finite points,
+ *  from the default graph as the filters build it: the detail term
+ *  (core::detailGammaFactor) and the noise term (core::noiseGammaFactor, TV only). */
+struct RefinedTerms
+{
+  double detail, noise;
+  double
+  product () const { return std::clamp (detail * noise, 0.125, 16.0); }
+};
+
+RefinedTerms
+refinedTermsOf (const synthetic::Cloud &cloud, core::SmoothingKind kind)
 {
   const core::PointMatrix points = synthetic::toMatrix (cloud);
   const core::PointGraph graph = core::buildKnnGraph (points);
   core::Signal3 f (static_cast<Eigen::Index> (graph.numVertices ()), 3);
   for (std::size_t v = 0; v < graph.numVertices (); ++v)
     f.row (static_cast<Eigen::Index> (v)) = points.row (graph.order[v]).cast<double> ();
-  return core::detailGammaFactor (graph, core::estimateNoise (graph, f).curvature, kind);
+  const core::NoiseEstimate estimate = core::estimateNoise (graph, f);
+  return {core::detailGammaFactor (graph, estimate.curvature, kind),
+          core::noiseGammaFactor (graph, estimate.level, kind)};
 }
 
 } // namespace
@@ -405,9 +417,10 @@ TEST (SmoothingQuality, QuadricSurfaceBeatsThePlaneOnCurvedShapes)
     EXPECT_LT (quadric, 0.85 * plane);
     EXPECT_LT (blended, 0.95 * quadric);
     // The data-derived gamma is halved with the quadrics (they remove noise themselves)
-    // and scaled for the surface's detail.
-    const double factor = detailFactorOf (*sphere, which == 0 ? core::SmoothingKind::TIKHONOV
-                                                              : core::SmoothingKind::TOTAL_VARIATION);
+    // and scaled for the surface's detail (and, TV, for the noise-to-spacing ratio).
+    const double factor = refinedTermsOf (*sphere, which == 0 ? core::SmoothingKind::TIKHONOV
+                                                              : core::SmoothingKind::TOTAL_VARIATION)
+                              .product ();
     EXPECT_NE (factor, 1.0);
     EXPECT_NEAR (quadric_gamma, 0.5 * factor * filter.getUsedGamma (), 1e-6 * quadric_gamma);
     EXPECT_EQ (blended_gamma, quadric_gamma);
@@ -500,12 +513,14 @@ TEST (SmoothingQuality, RiskEstimateFollowsTheSurfacesDetail)
         filter->setAutomaticGamma ();
         filter->setGammaSelection (GammaSelection::RISK_ESTIMATE);
         const double risk = meanDistance (*run (*filter, cloud), shape.distance);
-        // Against the rule without its detail term (the own quadric has it too).
+        // Against the rule without its detail (and TV's noise) term (the own quadric has
+        // them too).
         const double multiple = filter->getUsedGamma () / rule_gamma *
-                                detailFactorOf (shape.cloud, which == 0 ? core::SmoothingKind::TIKHONOV
-                                                                        : core::SmoothingKind::TOTAL_VARIATION);
+                                refinedTermsOf (shape.cloud, which == 0 ? core::SmoothingKind::TIKHONOV
+                                                                        : core::SmoothingKind::TOTAL_VARIATION)
+                                    .product ();
         std::printf ("%s, %s, %s: rule %.5f, best of the sweep %.5f, risk estimate %.5f (%.3g x the rule's "
-                     "gamma without its detail term)\n", shape.name, which == 0 ? "Tikhonov" : "TV",
+                     "gamma without its terms)\n", shape.name, which == 0 ? "Tikhonov" : "TV",
                      blended ? "blended quadrics" : "own quadric", rule, best, risk, multiple);
         EXPECT_LT (risk, shape.within_best * best) << shape.name;
         EXPECT_LE (risk, (blended ? 1.1 : 1.02) * rule) << shape.name;
@@ -535,22 +550,22 @@ TEST (SmoothingQuality, DetailTermFitsTheStrengthToTheSurface)
       filter.reset (new GraphTikhonovSmoothing<pcl::PointXYZ>);
     else
       filter.reset (new GraphTVSmoothing<pcl::PointXYZ>);
-    const double factor = detailFactorOf (*sphere, which == 0 ? core::SmoothingKind::TIKHONOV
-                                                              : core::SmoothingKind::TOTAL_VARIATION);
+    const RefinedTerms terms = refinedTermsOf (*sphere, which == 0 ? core::SmoothingKind::TIKHONOV
+                                                                  : core::SmoothingKind::TOTAL_VARIATION);
     const double with_detail = meanDistance (*run (*filter, sphere), kToSphere);
     const double gamma = filter->getUsedGamma ();
-    filter->setGamma (gamma / factor);
+    filter->setGamma (gamma / terms.detail);
     const double without = meanDistance (*run (*filter, sphere), kToSphere);
     std::printf ("%s, sphere of 20,000 points: detail factor %.3g, error %.6f (without the term %.6f)\n",
-                 which == 0 ? "Tikhonov" : "TV", factor, with_detail, without);
-    EXPECT_GE (factor, 4.0);
+                 which == 0 ? "Tikhonov" : "TV", terms.detail, with_detail, without);
+    EXPECT_GE (terms.detail, 4.0);
     EXPECT_LT (with_detail, 0.85 * without);
     // The plane local surface (the paper's filter refined only by the normal move) keeps
-    // the rule as it is.
+    // the rule as it is: without the terms, and not halved.
     filter->setAutomaticGamma ();
     filter->setLocalSurface (LocalSurface::PLANE);
     run (*filter, sphere);
-    EXPECT_NEAR (filter->getUsedGamma (), 2.0 * gamma / factor, 1e-6 * gamma / factor);
+    EXPECT_NEAR (filter->getUsedGamma (), 2.0 * gamma / terms.product (), 1e-6 * gamma / terms.product ());
   }
 }
 

@@ -17,8 +17,8 @@ namespace pcl_graph_denoise {
  * invariant) is the default; the anisotropic one (the sum of the three absolute
  * differences) is an option. gamma is a length, in the cloud's units; its default is
  * derived from the data (see core::defaultTotalVariationGamma). Solved by the
- * accelerated primal-dual algorithm of Chambolle and Pock, stopped on the relative
- * duality gap. See GraphSmoothing for the parameters and the output contract.
+ * diagonally preconditioned, accelerated primal-dual algorithm of Chambolle and Pock
+ * (core::solveTotalVariation), stopped on the relative duality gap. See GraphSmoothing for the parameters and the output contract.
  *
  * \code
  * pcl_graph_denoise::GraphTVSmoothing<pcl::PointXYZ> smoother;

@@ -90,10 +90,12 @@ struct TotalVariationParams
   std::function<void (int iterations, double residual)> progress;
 };
 
-/** \brief Total-variation denoising by the accelerated primal-dual algorithm of
- *  Chambolle and Pock (2011, algorithm 2; the data term is 1-strongly convex), which
- *  needs no inner linear solve, warm-started with every edge's dual on the boundary of
- *  its ball along the edge's difference. The reported residual is the relative
+/** \brief Total-variation denoising by the primal-dual algorithm of Chambolle and Pock,
+ *  which needs no inner linear solve: diagonally preconditioned (Pock and Chambolle 2011:
+ *  a step per vertex, 1 / sum_j sqrt(w_ij), and per edge) and accelerated by a global
+ *  scale of the steps as in their algorithm 2 (the data term is 1-strongly convex),
+ *  warm-started with every edge's dual on the boundary of its ball along the edge's
+ *  difference. The reported residual is the relative
  *  duality gap.
  *  \throws std::invalid_argument on invalid parameters or sizes. */
 Signal3
@@ -133,6 +135,22 @@ defaultTotalVariationGamma (const PointGraph &graph, double noise);
  *  (<= 0) or the graph has no spacing. */
 double
 detailGammaFactor (const PointGraph &graph, double curvature, SmoothingKind kind);
+
+/** \brief The factor by which the refined total-variation filter scales its rule's
+ *  strength for the noise-to-spacing ratio r = noise / spacing: (r / 0.5)^1.5, held
+ *  within [1/2, 3]. The linear-in-noise TV rule under-smooths dense clouds with strong
+ *  noise (the best multiple of the rule grows from about 1/2 at r = 0.25 to 4 and more
+ *  at r = 1.2 on the calibration meshes; docs/evaluation.md, section 5); Tikhonov's rule
+ *  already goes as r^1.5. 1 for the Tikhonov kinds, and when the noise is not positive
+ *  and finite or the graph has no spacing. */
+double
+noiseGammaFactor (const PointGraph &graph, double noise, SmoothingKind kind);
+
+/** \brief The refined filters' scale of the halved rule: detailGammaFactor times
+ *  noiseGammaFactor, the product held within [1/8, 16] as the detail term alone (beyond
+ *  16, on a sphere of a million points, the best strength stops growing). */
+double
+refinedGammaFactor (const PointGraph &graph, double noise, double curvature, SmoothingKind kind);
 
 /** \brief A whole denoising pass at a strength gamma: the positions of the points of
  *  `graph` (one row per vertex) denoised, as the filters do (solve, refinements). */

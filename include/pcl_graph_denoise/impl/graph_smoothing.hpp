@@ -239,11 +239,12 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
     };
     if (automatic_gamma_)
     {
-      // The refined filters scale the paper's rule for the surface's detail.
+      // The refined filters scale the paper's rule for the surface's detail, and TV also
+      // for the noise-to-spacing ratio.
       used_gamma_ = automaticGamma (graph, noise);
       if (quadric)
         used_gamma_ *= detail::kQuadricGammaScale *
-                       core::detailGammaFactor (graph, estimate.curvature, smoothingKind ());
+                       core::refinedGammaFactor (graph, noise, estimate.curvature, smoothingKind ());
       if (gamma_selection_ == GammaSelection::RISK_ESTIMATE)
       {
         core::RiskSelectionParams params;
