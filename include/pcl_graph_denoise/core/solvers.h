@@ -147,8 +147,9 @@ double
 noiseGammaFactor (const PointGraph &graph, double noise, SmoothingKind kind);
 
 /** \brief The refined filters' scale of the halved rule: detailGammaFactor times
- *  noiseGammaFactor, the product held within [1/8, 16] as the detail term alone (beyond
- *  16, on a sphere of a million points, the best strength stops growing). */
+ *  noiseGammaFactor, the product held within the detail term's own bounds [1/8, 16]
+ *  (on a noisy sphere of a million points TV's product reaches 16, and 4 times that
+ *  strength would still lower its error: docs/evaluation.md, section 5). */
 double
 refinedGammaFactor (const PointGraph &graph, double noise, double curvature, SmoothingKind kind);
 
