@@ -18,7 +18,8 @@ namespace pcl_graph_denoise {
  * differences) is an option. gamma is a length, in the cloud's units; its default is
  * derived from the data (see core::defaultTotalVariationGamma). Solved by the
  * diagonally preconditioned, accelerated primal-dual algorithm of Chambolle and Pock
- * (core::solveTotalVariation), stopped on the relative duality gap. See GraphSmoothing for the parameters and the output contract.
+ * (core::solveTotalVariation), stopped on the relative duality gap. See GraphSmoothing
+ * for the parameters and the output contract.
  *
  * \code
  * pcl_graph_denoise::GraphTVSmoothing<pcl::PointXYZ> smoother;

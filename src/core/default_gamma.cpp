@@ -7,6 +7,8 @@
 
 #include <pcl_graph_denoise/core/normals.h>
 
+#include "solver_support.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -192,12 +194,7 @@ defaultTikhonovGamma (const PointGraph &graph, double noise)
 double
 defaultTotalVariationGamma (const PointGraph &graph, double noise)
 {
-  const std::size_t n = graph.numVertices ();
-  std::vector<double> root_degree (n, 0.0);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
-      root_degree[i] += std::sqrt (double (graph.weight[e]));
-  const double mean_root = meanOf (root_degree);
+  const double mean_root = meanOf (detail::rootDegree (graph));
   if (!(mean_root > 0.0) || !(graph.spacing > 0.0) || !(noise > 0.0))
     return 0.0;
   return kTotalVariationC * noise / mean_root;

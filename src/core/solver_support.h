@@ -13,10 +13,23 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <vector>
 
 namespace pcl_graph_denoise {
 namespace core {
 namespace detail {
+
+/** Each vertex's sum of sqrt(w_ij) over its stored entries: the row sums of |grad| of
+ *  the total-variation term, behind TV's derived strength and its solver's steps. */
+inline std::vector<double>
+rootDegree (const PointGraph &graph)
+{
+  std::vector<double> root_degree (graph.numVertices (), 0.0);
+  for (std::size_t i = 0; i < root_degree.size (); ++i)
+    for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+      root_degree[i] += std::sqrt (double (graph.weight[e]));
+  return root_degree;
+}
 
 /** Three running sums (one per column), zero-initialised. */
 struct Sum3

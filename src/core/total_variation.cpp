@@ -125,18 +125,13 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
   std::vector<float> root_weight (graph.numEntries ());
   for (std::size_t e = 0; e < root_weight.size (); ++e)
     root_weight[e] = std::sqrt (graph.weight[e]);
-  std::vector<double> tau (n, 0.0);
+  std::vector<double> tau = detail::rootDegree (graph);
   double min_tau = std::numeric_limits<double>::infinity ();
-  for (std::size_t i = 0; i < n; ++i)
+  for (double &t : tau)
   {
-    double root_degree = 0.0;
-    for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
-      root_degree += double (root_weight[e]);
-    if (root_degree > 0.0)
-    {
-      tau[i] = 1.0 / root_degree;
-      min_tau = std::min (min_tau, tau[i]);
-    }
+    t = t > 0.0 ? 1.0 / t : 0.0;
+    if (t > 0.0)
+      min_tau = std::min (min_tau, t);
   }
   if (!std::isfinite (min_tau))  // no vertex with a weighted edge
   {
