@@ -366,14 +366,13 @@ TEST (SmoothingQuality, ShrinkageCorrectionKeepsTheSphereRadius)
 
 namespace {
 
-/** The terms by which the refined filters scale the rule on a cloud of finite points,
- *  from the default graph as the filters build it: the detail term
- *  (core::detailGammaFactor) and the noise term (core::noiseGammaFactor, TV only). */
+/** The scale the refined filters apply to the rule on a cloud of finite points, from
+ *  the default graph as the filters build it: the detail term alone
+ *  (core::detailGammaFactor) and the whole scale (core::refinedGammaFactor, with TV's
+ *  noise term). */
 struct RefinedTerms
 {
-  double detail, noise;
-  double
-  product () const { return std::clamp (detail * noise, 0.125, 16.0); }
+  double detail, refined;
 };
 
 RefinedTerms
@@ -386,7 +385,7 @@ refinedTermsOf (const synthetic::Cloud &cloud, core::SmoothingKind kind)
     f.row (static_cast<Eigen::Index> (v)) = points.row (graph.order[v]).cast<double> ();
   const core::NoiseEstimate estimate = core::estimateNoise (graph, f);
   return {core::detailGammaFactor (graph, estimate.curvature, kind),
-          core::noiseGammaFactor (graph, estimate.level, kind)};
+          core::refinedGammaFactor (graph, estimate.level, estimate.curvature, kind)};
 }
 
 } // namespace
@@ -420,7 +419,7 @@ TEST (SmoothingQuality, QuadricSurfaceBeatsThePlaneOnCurvedShapes)
     // and scaled for the surface's detail (and, TV, for the noise-to-spacing ratio).
     const double factor = refinedTermsOf (*sphere, which == 0 ? core::SmoothingKind::TIKHONOV
                                                               : core::SmoothingKind::TOTAL_VARIATION)
-                              .product ();
+                              .refined;
     EXPECT_NE (factor, 1.0);
     EXPECT_NEAR (quadric_gamma, 0.5 * factor * filter.getUsedGamma (), 1e-6 * quadric_gamma);
     EXPECT_EQ (blended_gamma, quadric_gamma);
@@ -518,7 +517,7 @@ TEST (SmoothingQuality, RiskEstimateFollowsTheSurfacesDetail)
         const double multiple = filter->getUsedGamma () / rule_gamma *
                                 refinedTermsOf (shape.cloud, which == 0 ? core::SmoothingKind::TIKHONOV
                                                                         : core::SmoothingKind::TOTAL_VARIATION)
-                                    .product ();
+                                    .refined;
         std::printf ("%s, %s, %s: rule %.5f, best of the sweep %.5f, risk estimate %.5f (%.3g x the rule's "
                      "gamma without its terms)\n", shape.name, which == 0 ? "Tikhonov" : "TV",
                      blended ? "blended quadrics" : "own quadric", rule, best, risk, multiple);
@@ -565,7 +564,7 @@ TEST (SmoothingQuality, DetailTermFitsTheStrengthToTheSurface)
     filter->setAutomaticGamma ();
     filter->setLocalSurface (LocalSurface::PLANE);
     run (*filter, sphere);
-    EXPECT_NEAR (filter->getUsedGamma (), 2.0 * gamma / terms.product (), 1e-6 * gamma / terms.product ());
+    EXPECT_NEAR (filter->getUsedGamma (), 2.0 * gamma / terms.refined, 1e-6 * gamma / terms.refined);
   }
 }
 

@@ -181,8 +181,8 @@ public:
    *  that the overlapping fits average out their own noise (core::quadricDisplacement
    *  with core::QuadricProjection::BLENDED). LocalSurface::QUADRIC: onto its own vertex's
    *  quadric only, the previous default. With either, the data-derived gamma is half the
-   *  paper rule's (the fits remove noise themselves) times the detail term
-   *  (core::detailGammaFactor). LocalSurface::PLANE: the plane
+   *  paper rule's (the fits remove noise themselves) times the detail term, and for TV
+   *  the noise term (core::refinedGammaFactor). LocalSurface::PLANE: the plane
    *  through the smoothed point, normal from the fit of the smoothed points over two rings
    *  (core::normalDisplacement). All measured in docs/evaluation.md. */
   inline void

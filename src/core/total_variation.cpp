@@ -116,7 +116,7 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
   // Diagonal preconditioning (Pock and Chambolle 2011, alpha = 1): each vertex's primal
   // step is the inverse of its row sum of |grad|, tau_i = 1 / sum_j sqrt(w_ij), and each
   // entry's dual step sigma_e = 1 / (2 sqrt(w_e)), so that sigma_e sqrt(w_e) = 1/2 and the
-  // dual update needs no weight. A global scale t multiplies the primal steps and
+  // dual update needs no weight. A global `scale` multiplies the primal steps and
   // divides the dual ones, shrunk as in Chambolle and Pock's accelerated algorithm 2 with
   // the data term's modulus of strong convexity in the preconditioned metric, the
   // smallest tau (with the mean tau instead, the fountain scan's weakly linked pieces
