@@ -10,7 +10,8 @@
  * 1. k-NN graph (k = 10, weights and symmetrisation included, all threads) versus a
  *    plain single-threaded loop of pcl::KdTreeFLANN::nearestKSearch over the same
  *    points in their given (random) order; and the search alone, Morton-ordered, on
- *    all threads, with nanoflann (the core's choice) and with KdTreeFLANN.
+ *    all threads, with nanoflann (the core's choice) and with KdTreeFLANN. Every time
+ *    is the median of 3 runs.
  * 2. Graph memory in bytes per point.
  * 3. Outlier removal on a noisy sphere with 5% uniform outliers in its bounding box:
  *    GraphDegreeOutlierRemoval (defaults) versus pcl::StatisticalOutlierRemoval (mean K
@@ -51,6 +52,9 @@ namespace {
 
 using synthetic::toMatrix;
 
+/** Each timing of the graph section is the median of this many runs. */
+constexpr int kRepeats = 3;
+
 /** Runs body(i) for i in [0, n) on `threads` threads, blocks of 1024. */
 template <typename Body>
 void
@@ -84,15 +88,16 @@ benchGraph (std::size_t n, int threads)
 {
   const Cloud::Ptr cloud (new Cloud (synthetic::noisySphere (n, 1.0, 0.01, 7)));
   const int k = 10;
-  std::printf ("\n== k-NN graph, noisy unit sphere (sigma 0.01), %zu points, k = %d, %d threads\n",
-               n, k, threads);
+  std::printf ("\n== k-NN graph, noisy unit sphere (sigma 0.01), %zu points, k = %d, %d threads "
+               "(each time the median of %d runs)\n",
+               n, k, threads, kRepeats);
 
   // PCL's single-threaded loop in the given (random) order.
   pcl::KdTreeFLANN<pcl::PointXYZ> flann;
-  const double t_flann_build = seconds ([&] { flann.setInputCloud (cloud); });
+  const double t_flann_build = medianSeconds (kRepeats, [&] { flann.setInputCloud (cloud); });
   pcl::Indices idx (k + 1);
   std::vector<float> d2 (k + 1);
-  const double t_flann_loop = seconds ([&] {
+  const double t_flann_loop = medianSeconds (kRepeats, [&] {
     for (std::size_t i = 0; i < n; ++i)
       flann.nearestKSearch ((*cloud)[i], k + 1, idx, d2);
   });
@@ -103,7 +108,8 @@ benchGraph (std::size_t n, int threads)
   params.k = k;
   params.num_threads = threads;
   core::PointGraph graph;
-  const double t_graph = seconds ([&] { graph = core::buildKnnGraph (points, params); });
+  const double t_graph =
+      medianSeconds (kRepeats, [&] { graph = core::buildKnnGraph (points, params); });
 
   // The search alone on Morton-ordered points, with either library.
   core::PointMatrix ordered (n, 3);
@@ -113,8 +119,9 @@ benchGraph (std::size_t n, int threads)
   for (std::size_t v = 0; v < n; ++v)
     ordered_cloud->push_back (pcl::PointXYZ (ordered (v, 0), ordered (v, 1), ordered (v, 2)));
   pcl::KdTreeFLANN<pcl::PointXYZ> flann_ordered;
-  const double t_fo_build = seconds ([&] { flann_ordered.setInputCloud (ordered_cloud); });
-  const double t_fo_search = seconds ([&] {
+  const double t_fo_build =
+      medianSeconds (kRepeats, [&] { flann_ordered.setInputCloud (ordered_cloud); });
+  const double t_fo_search = medianSeconds (kRepeats, [&] {
     parallel (n, threads, [&] (std::size_t i) {
       thread_local pcl::Indices ti (k + 1);
       thread_local std::vector<float> td (k + 1);
@@ -126,10 +133,10 @@ benchGraph (std::size_t n, int threads)
       nanoflann::L2_Simple_Adaptor<float, MatrixDataset, float, std::uint32_t>, MatrixDataset,
       3, std::uint32_t>;
   std::unique_ptr<Tree> nano;
-  const double t_nano_build = seconds ([&] {
+  const double t_nano_build = medianSeconds (kRepeats, [&] {
     nano.reset (new Tree (3, data, nanoflann::KDTreeSingleIndexAdaptorParams (16)));
   });
-  const double t_nano_search = seconds ([&] {
+  const double t_nano_search = medianSeconds (kRepeats, [&] {
     parallel (n, threads, [&] (std::size_t i) {
       std::uint32_t ti[16];
       float td[16];

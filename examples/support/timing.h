@@ -6,7 +6,9 @@
 
 /* Wall-clock timing for the benchmarks and the demo. */
 
+#include <algorithm>
 #include <chrono>
+#include <vector>
 
 namespace pcl_graph_denoise {
 
@@ -18,6 +20,20 @@ seconds (F &&f)
   const auto start = std::chrono::steady_clock::now ();
   f ();
   return std::chrono::duration<double> (std::chrono::steady_clock::now () - start).count ();
+}
+
+/** Median of the seconds that `repeats` calls of f() took (at least one call): steadier
+ *  than one call against a machine's passing load, and the same for both sides of a
+ *  comparison. */
+template <typename F>
+double
+medianSeconds (int repeats, F &&f)
+{
+  std::vector<double> times;
+  for (int r = 0; r < std::max (repeats, 1); ++r)
+    times.push_back (seconds (f));
+  std::nth_element (times.begin (), times.begin () + times.size () / 2, times.end ());
+  return times[times.size () / 2];
 }
 
 } // namespace pcl_graph_denoise
