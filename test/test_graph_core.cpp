@@ -682,6 +682,88 @@ TEST (RadiusGraph, NormalResidualKeepsSharpEdgesCornersAndNoiselessSurfaces)
   EXPECT_GT (far.residual_scale, 0.0);
 }
 
+TEST (RadiusGraph, QueryRowsAreSearchedAmongEveryPoint)
+{
+  // The first rows are the queries; their degrees, residual verdicts and distances are
+  // the ones the whole set gives them, at the same radius and theta, and the derived
+  // spacing is the queries' median.
+  const PointMatrix p = noisySquare (4000, 0.01f, 36);
+  const std::size_t q = 1000;
+  RadiusGraphParams params;
+  params.residual_multiplier = 4.0;
+  params.num_threads = 2;
+  const RadiusDegrees all = radiusGraphDegrees (p, params);
+  params.radius = all.radius;
+  params.sigma = all.sigma;
+  const RadiusDegrees fixed_all = radiusGraphDegrees (p, params);
+  params.query_rows = q;
+  const RadiusDegrees some = radiusGraphDegrees (p, params);
+  ASSERT_EQ (some.degree.size (), q);
+  ASSERT_EQ (some.off_surface.size (), q);
+  ASSERT_EQ (some.mean_knn_distance.size (), q);
+  for (std::size_t r = 0; r < q; ++r)
+  {
+    ASSERT_NEAR (some.degree[r], fixed_all.degree[r], 1e-9 * (1.0 + fixed_all.degree[r])) << r;
+    ASSERT_EQ (some.mean_knn_distance[r], fixed_all.mean_knn_distance[r]) << r;
+  }
+  std::vector<float> first (all.mean_knn_distance.begin (), all.mean_knn_distance.begin () + q);
+  std::nth_element (first.begin (), first.begin () + q / 2, first.end ());
+  params.radius = params.sigma = 0.0;
+  EXPECT_FLOAT_EQ (static_cast<float> (radiusGraphDegrees (p, params).spacing), first[q / 2]);
+  // A query among points it does not name: its degree counts them.
+  const PointMatrix one = p.topRows (1);
+  params.query_rows = 0;
+  params.radius = all.radius;
+  EXPECT_EQ (radiusGraphDegrees (one, params).degree[0], 0.0);
+  params.query_rows = 1;
+  EXPECT_GT (radiusGraphDegrees (p, params).degree[0], 0.0);
+  params.query_rows = p.rows () + 1;
+  EXPECT_THROW (radiusGraphDegrees (p, params), std::invalid_argument);
+  params.query_rows = 2;
+  EXPECT_THROW (radiusGraphDegrees (one, params), std::invalid_argument);
+}
+
+TEST (DistinctPoints, CopiesAreMergedInTheOrderOfTheirFirstRows)
+{
+  PointMatrix p (6, 3);
+  p << 1, 2, 3,  //
+      0, 0, 0,   //
+      1, 2, 3,   // a copy of row 0
+      -0.0f, 0, 0,  // -0 == 0: a copy of row 1
+      1, 2, 3.5f,   //
+      1, 2, 3;      // row 0 again
+  const DistinctPoints d = distinctPoints (p);
+  EXPECT_EQ (d.copies, 3u);
+  ASSERT_EQ (d.points.rows (), 3);
+  EXPECT_EQ (d.of_row, (std::vector<VertexIndex>{0, 1, 0, 1, 2, 0}));
+  for (Eigen::Index r = 0; r < p.rows (); ++r)
+    EXPECT_TRUE ((d.points.row (d.of_row[static_cast<std::size_t> (r)]) - p.row (r)).isZero ()) << r;
+  // Without copies: nothing to merge, the input is the answer.
+  const PointMatrix q = randomPoints (1000, 3);
+  const DistinctPoints none = distinctPoints (q);
+  EXPECT_EQ (none.copies, 0u);
+  EXPECT_EQ (none.points.rows (), 0);
+  for (std::size_t r = 0; r < 1000; ++r)
+    ASSERT_EQ (none.of_row[r], r);
+  EXPECT_TRUE (distinctPoints (PointMatrix (0, 3)).of_row.empty ());
+}
+
+TEST (RadiusGraph, HeavilyDuplicatedPointsGiveTheDistinctPositionsSpacing)
+{
+  // Every point 12 times: the median mean distance to the 10 nearest is 0; the spacing
+  // (and the radius) is then the distinct positions'.
+  const PointMatrix p = noisySquare (500, 0.01f, 37);
+  PointMatrix copies (12 * p.rows (), 3);
+  for (int c = 0; c < 12; ++c)
+    copies.middleRows (c * p.rows (), p.rows ()) = p;
+  const RadiusDegrees alone = radiusGraphDegrees (p), repeated = radiusGraphDegrees (copies);
+  EXPECT_GT (alone.spacing, 0.0);
+  EXPECT_DOUBLE_EQ (repeated.spacing, alone.spacing);
+  EXPECT_DOUBLE_EQ (repeated.radius, alone.radius);
+  // Each copy counts as a neighbour of weight 1 (the degree is a density).
+  EXPECT_NEAR (repeated.degree[0], 12.0 * alone.degree[0] + 11.0, 1e-9 * repeated.degree[0]);
+}
+
 TEST (RadiusGraph, NormalResidualOffByDefaultAndValidated)
 {
   const PointMatrix p = noisySquare (500, 0.01f, 35);

@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include <pcl/common/io.h>
 #include <pcl/io/pcd_io.h>
 
 #include <algorithm>
@@ -156,6 +157,32 @@ TYPED_TEST (SmoothingContract, NonFinitePointsPassThroughAndIndicesAreHonoured)
       moved += !samePoint (out[i], (*cloud)[i]);
   }
   EXPECT_GT (moved, indices->size () / 2);
+
+  // As in PCL's filters, the indices choose the points that move and the whole cloud is
+  // searched: a named point moves as when the whole cloud is smoothed (up to the float
+  // rounding of the positions, centred on the named points), also along the cut (z = 0),
+  // where smoothing the named points alone pulls the border inwards.
+  typename TestFixture::Filter whole;
+  whole.setInputCloud (cloud);
+  pcl::PointCloud<PointT> all;
+  whole.filter (all);
+  float largest = 0.0f;
+  for (auto i : *indices)
+    if (isFinitePosition ((*cloud)[i]))
+      largest = std::max (largest, (out[i].getVector3fMap () - all[i].getVector3fMap ()).norm ());
+  EXPECT_LT (largest, 1e-5f);
+  auto subset = std::make_shared<pcl::PointCloud<PointT>> ();
+  pcl::copyPointCloud (*cloud, *indices, *subset);
+  typename TestFixture::Filter alone;
+  alone.setInputCloud (subset);
+  pcl::PointCloud<PointT> smoothed_alone;
+  alone.filter (smoothed_alone);
+  float largest_alone = 0.0f;
+  for (std::size_t r = 0; r < indices->size (); ++r)
+    if (isFinitePosition ((*subset)[r]))
+      largest_alone = std::max (largest_alone, (smoothed_alone[r].getVector3fMap () -
+                                                all[(*indices)[r]].getVector3fMap ()).norm ());
+  EXPECT_GT (largest_alone, 100.0f * std::max (largest, 1e-6f));
 }
 
 TYPED_TEST (SmoothingContract, ZeroGammaIsTheIdentityAndInPlaceEqualsOutOfPlace)
@@ -852,6 +879,31 @@ TEST (SmoothingBadInput, EmptyAllNaNOnePointDuplicatesAndFewPoints)
   tikhonov.setInputCloud (same);
   tikhonov.filter (out);
   EXPECT_TRUE (sameCloud (out, *same));
+  // Every point 12 times: its 10 nearest neighbours would all be copies and nothing
+  // could move; coincident points are one vertex, so each copy moves as the point does
+  // in the cloud without copies.
+  auto single = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> (
+      pcl_graph_denoise::synthetic::noisySphere (200, 1.0, 0.01, 3));
+  auto copies = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  for (int c = 0; c < 12; ++c)
+    *copies += *single;
+  pcl::PointCloud<pcl::PointXYZ> smoothed_single;
+  tikhonov.setInputCloud (single);
+  tikhonov.filter (smoothed_single);
+  tikhonov.setInputCloud (copies);
+  ::testing::internal::CaptureStderr ();
+  tikhonov.filter (out);
+  EXPECT_EQ (::testing::internal::GetCapturedStderr (), "");
+  ASSERT_EQ (out.size (), copies->size ());
+  float largest = 0.0f, moved = 0.0f;
+  for (std::size_t i = 0; i < out.size (); ++i)
+  {
+    const auto &expected = smoothed_single[i % single->size ()].getVector3fMap ();
+    largest = std::max (largest, (out[i].getVector3fMap () - expected).norm ());
+    moved = std::max (moved, (out[i].getVector3fMap () - (*copies)[i].getVector3fMap ()).norm ());
+  }
+  EXPECT_LT (largest, 1e-5f);
+  EXPECT_GT (moved, 1e-3f);
 }
 
 TEST (SmoothingBadInput, RiskSelectionOnDegenerateCloudsKeepsTheRulesResult)

@@ -12,8 +12,11 @@ namespace pcl_graph_denoise {
  *  (Schoenenberger, Paratte, Vandergheynst, "Graph-based denoising for time-varying
  *  point clouds", 2015, section 3.1).
  *
- * Every finite point named by the indices is linked to the other points closer than
- * epsilon, with the Gaussian weight exp(-d^2 / (2 theta^2)). A point's degree is the
+ * Every finite point named by the indices is linked to the other finite points of the
+ * input cloud closer than epsilon, with the Gaussian weight exp(-d^2 / (2 theta^2)): as
+ * in PCL's StatisticalOutlierRemoval, the indices name the points tested and the whole
+ * cloud is searched for their neighbours (the derived defaults come from the named
+ * points, as SOR's statistics do). A point's degree is the
  * sum of its weights: an outlier has few close neighbours and a low degree. Points
  * whose degree is below the threshold tau are removed; alternatively, a given
  * fraction of the lowest-degree points is removed (the paper's percentile rule).

@@ -61,7 +61,12 @@ class GraphSequenceSmoothing;
  *
  * Output follows PCL's smoothing filters (Bilateral, Median): it starts as a copy of
  * the input, and only x, y, z of the finite points named by the indices are rewritten
- * (each moved by its computed displacement); size, organisation and every other field
+ * (each moved by its computed displacement). As in those filters, the whole cloud is
+ * searched: the graph links every finite point of the input, and a named point moves as
+ * when the whole cloud is smoothed (so a small region of a large cloud costs the whole
+ * cloud's time; extract it first, e.g. with pcl::ExtractIndices, to smooth it on its
+ * own). Coincident points (exact copies) are one vertex, and every copy moves as one.
+ * Size, organisation and every other field
  * are kept, non-finite points pass through unchanged, a point with no neighbour does
  * not move and gamma = 0 is the identity. Invalid parameters or indices print a
  * PCL_ERROR naming the class and the parameter and leave an empty output; a solver

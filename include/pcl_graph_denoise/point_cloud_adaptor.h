@@ -37,6 +37,10 @@ struct GatheredPoints
   std::size_t repeated = 0;
   /** Subtracted from every position (mean of the finite points). */
   Eigen::Vector3d origin = Eigen::Vector3d::Zero ();
+  /** Rows of xyz after the named points (addSearchSurface): the other finite points of
+   *  the cloud, searched as neighbours only. Rows [0, cloud_index.size ()) are the named
+   *  points. */
+  std::size_t surface_only = 0;
 };
 
 /** \brief Checks an index list against a cloud; returns an empty string when every
@@ -104,6 +108,40 @@ gatherFinitePoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &in
     PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] %zu repeated indices were used once.\n",
               class_name, out.repeated);
   return out;
+}
+
+/** \brief Appends to `gathered` (from gatherFinitePoints on `cloud`) the finite points of
+ *  the cloud its index list does not name, in cloud order and relative to the same
+ *  origin, as rows searched as neighbours only: PCL's filters search the whole input
+ *  cloud for the points their indices name. Nothing is appended when no point is named
+ *  (nothing to filter) or when every finite point is. */
+template <typename PointT>
+void
+addSearchSurface (const pcl::PointCloud<PointT> &cloud, GatheredPoints &gathered)
+{
+  const std::size_t named = gathered.cloud_index.size ();
+  if (named == 0 || named + gathered.non_finite.size () == cloud.size ())
+    return;
+  std::vector<std::uint8_t> is_named (cloud.size (), 0);
+  for (const auto index : gathered.cloud_index)
+    is_named[index] = 1;
+  pcl::Indices others;
+  for (std::size_t i = 0; i < cloud.size (); ++i)
+    if (!is_named[i] && isFinitePosition (cloud[i]))
+      others.push_back (static_cast<pcl::index_t> (i));
+  if (others.empty ())
+    return;
+  const auto rows = static_cast<Eigen::Index> (named + others.size ());
+  gathered.xyz.conservativeResize (rows, 3);
+  for (std::size_t m = 0; m < others.size (); ++m)
+  {
+    const PointT &p = cloud[others[m]];
+    const auto r = static_cast<Eigen::Index> (named + m);
+    gathered.xyz (r, 0) = static_cast<float> (double (p.x) - gathered.origin.x ());
+    gathered.xyz (r, 1) = static_cast<float> (double (p.y) - gathered.origin.y ());
+    gathered.xyz (r, 2) = static_cast<float> (double (p.z) - gathered.origin.z ());
+  }
+  gathered.surface_only = others.size ();
 }
 
 /** \brief Moves the point of the cloud named by row r of `cloud_index` by the

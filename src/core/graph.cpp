@@ -15,6 +15,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <numeric>
@@ -190,11 +191,12 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
       kBlock);
 }
 
-/** Per-point mean distance to its k nearest other points (k < n). Also fills the
- *  directed k-NN lists when `lists` is not null. */
+/** Per-point mean distance to its k nearest other points (k < n), for the vertices in
+ *  `vertices` (all when it is null; the others' entries stay 0). Also fills the directed
+ *  k-NN lists when `lists` is not null (then for every vertex). */
 std::vector<double>
 meanKnnDistances (const detail::KdTree &tree, std::size_t n, int k, int num_threads,
-                  DirectedLists *lists)
+                  DirectedLists *lists, const std::vector<VertexIndex> *vertices = nullptr)
 {
   std::vector<double> mean (n, 0.0);
   if (lists)
@@ -205,12 +207,13 @@ meanKnnDistances (const detail::KdTree &tree, std::size_t n, int k, int num_thre
     lists->idx.resize (n * static_cast<std::size_t> (k));
   }
   detail::parallelFor (
-      n, num_threads,
+      vertices ? vertices->size () : n, num_threads,
       [&] (std::size_t begin, std::size_t end) {
         std::vector<VertexIndex> idx (k), scratch_idx;
         std::vector<float> d2 (k), scratch_d2;
-        for (std::size_t i = begin; i < end; ++i)
+        for (std::size_t t = begin; t < end; ++t)
         {
+          const std::size_t i = vertices ? (*vertices)[t] : t;
           VertexIndex *out = lists ? lists->idx.data () + i * k : idx.data ();
           tree.nearestOthers (static_cast<VertexIndex> (i), k, out, d2.data (), scratch_idx,
                               scratch_d2);
@@ -251,6 +254,59 @@ gaussianWeight (double squared_distance, double sigma)
   // Single precision exp: the weights are stored as float anyway, and it is the
   // hottest call of the graph assembly.
   return std::exp (static_cast<float> (-squared_distance / (2.0 * sigma * sigma)));
+}
+
+DistinctPoints
+distinctPoints (const PointMatrix &points)
+{
+  const auto n = static_cast<std::size_t> (points.rows ());
+  DistinctPoints out;
+  out.of_row.resize (n);
+  // Open addressing over the positions' bits (-0 read as 0), filled in row order: each
+  // row finds the first row at its position, or becomes one.
+  const auto bits = [&] (std::size_t row, int c) {
+    const float v = points (static_cast<Eigen::Index> (row), c) + 0.0f;  // -0 + 0 = +0
+    std::uint32_t b;
+    std::memcpy (&b, &v, sizeof b);
+    return b;
+  };
+  std::size_t size = 16;
+  while (size < 2 * n)
+    size *= 2;
+  constexpr VertexIndex kEmpty = std::numeric_limits<VertexIndex>::max ();
+  std::vector<VertexIndex> slot (size, kEmpty);
+  std::vector<VertexIndex> firsts;  // the first row of each distinct position
+  for (std::size_t row = 0; row < n; ++row)
+  {
+    std::uint64_t h = bits (row, 0);
+    h = (h * 0x9E3779B97F4A7C15ULL) ^ bits (row, 1);
+    h = (h * 0x9E3779B97F4A7C15ULL) ^ bits (row, 2);
+    h *= 0x9E3779B97F4A7C15ULL;
+    for (std::size_t s = (h >> 32) & (size - 1);; s = (s + 1) & (size - 1))
+    {
+      const VertexIndex other = slot[s];
+      if (other == kEmpty)
+      {
+        slot[s] = static_cast<VertexIndex> (row);
+        out.of_row[row] = static_cast<VertexIndex> (firsts.size ());
+        firsts.push_back (static_cast<VertexIndex> (row));
+        break;
+      }
+      if (bits (other, 0) == bits (row, 0) && bits (other, 1) == bits (row, 1) &&
+          bits (other, 2) == bits (row, 2))
+      {
+        out.of_row[row] = out.of_row[other];
+        break;
+      }
+    }
+  }
+  out.copies = n - firsts.size ();
+  if (out.copies == 0)
+    return out;
+  out.points.resize (static_cast<Eigen::Index> (firsts.size ()), 3);
+  for (std::size_t d = 0; d < firsts.size (); ++d)
+    out.points.row (static_cast<Eigen::Index> (d)) = points.row (firsts[d]);
+  return out;
 }
 
 PointGraph
@@ -440,11 +496,43 @@ struct RadiusSearch
   PointMatrix ordered;
   double radius = 0.0;
   std::unique_ptr<detail::KdTree> tree;
-  std::vector<double> mean_knn;  // per vertex (graph order), before the median was taken
+  std::vector<double> mean_knn;  // per vertex (graph order; 0 off the queries)
+  /** The query vertices in graph order (the rows below RadiusGraphParams::query_rows),
+   *  empty when every vertex is one. */
+  std::vector<VertexIndex> queries;
+  std::size_t num_queries = 0;  // rows that are queries
+
+  bool
+  isQuery (std::size_t vertex) const { return graph.order[vertex] < num_queries; }
 };
 
+/** The spacing of the distinct positions among the queries: when at least half of them
+ *  have spacing_k copies or more, the median mean distance to the nearest points is 0,
+ *  and so would be epsilon and theta; the copies do not make the surface denser. 0 when
+ *  there are fewer than two distinct positions. */
+double
+distinctSpacing (const RadiusSearch &search, const RadiusGraphParams &params)
+{
+  PointMatrix queries (static_cast<Eigen::Index> (search.num_queries), 3);
+  for (std::size_t v = 0; v < search.graph.order.size (); ++v)
+    if (search.isQuery (v))
+      queries.row (search.graph.order[v]) = search.ordered.row (v);
+  const DistinctPoints distinct = distinctPoints (queries);
+  const PointMatrix &points = distinct.copies > 0 ? distinct.points : queries;
+  const auto m = static_cast<std::size_t> (points.rows ());
+  if (m < 2)
+    return 0.0;
+  const detail::KdTree tree (points);
+  const int k = static_cast<int> (std::min<std::size_t> (params.spacing_k, m - 1));
+  std::vector<double> mean = meanKnnDistances (tree, m, k, params.num_threads, nullptr);
+  std::nth_element (mean.begin (), mean.begin () + m / 2, mean.end ());
+  return mean[m / 2];
+}
+
+/** The search of an epsilon-radius graph; `queries` false: every row is a query (the
+ *  graph itself), true: the first params.query_rows rows are. */
 RadiusSearch
-prepareRadiusSearch (const PointMatrix &points, const RadiusGraphParams &params)
+prepareRadiusSearch (const PointMatrix &points, const RadiusGraphParams &params, bool queries)
 {
   validateLength (params.radius, "radius");
   validateLength (params.sigma, "sigma");
@@ -456,19 +544,36 @@ prepareRadiusSearch (const PointMatrix &points, const RadiusGraphParams &params)
   validateThreads (params.num_threads);
   validatePoints (points);
 
+  const auto rows = static_cast<std::size_t> (points.rows ());
+  requireValid (params.query_rows <= rows, "query_rows must be at most the number of points");
+
   RadiusSearch search;
   search.ordered = orderVertices (points, params.num_threads, search.graph);
   const std::size_t n = search.graph.order.size ();
+  search.num_queries = queries && params.query_rows > 0 ? params.query_rows : n;
   search.graph.row_ptr.assign (n + 1, 0);
   search.radius = params.radius;
   if (n < 2)
     return search;
+  if (search.num_queries < n)
+    for (std::size_t v = 0; v < n; ++v)
+      if (search.isQuery (v))
+        search.queries.push_back (static_cast<VertexIndex> (v));
   search.tree.reset (new detail::KdTree (search.ordered));
   const int k = static_cast<int> (std::min<std::size_t> (params.spacing_k, n - 1));
-  search.mean_knn = meanKnnDistances (*search.tree, n, k, params.num_threads, nullptr);
-  std::vector<double> mean = search.mean_knn;
-  std::nth_element (mean.begin (), mean.begin () + n / 2, mean.end ());
-  search.graph.spacing = mean[n / 2];
+  const std::vector<VertexIndex> *subset = search.queries.empty () ? nullptr : &search.queries;
+  search.mean_knn = meanKnnDistances (*search.tree, n, k, params.num_threads, nullptr, subset);
+  std::vector<double> mean;
+  if (subset)
+    for (const VertexIndex v : search.queries)
+      mean.push_back (search.mean_knn[v]);
+  else
+    mean = search.mean_knn;
+  auto middle = mean.begin () + mean.size () / 2;
+  std::nth_element (mean.begin (), middle, mean.end ());
+  search.graph.spacing = *middle;
+  if (search.graph.spacing == 0.0)
+    search.graph.spacing = distinctSpacing (search, params);
   search.graph.sigma =
       params.sigma > 0.0 ? params.sigma : params.sigma_factor * search.graph.spacing;
   if (params.radius == 0.0)
@@ -620,6 +725,8 @@ flagOffSurface (const RadiusSearch &search, const RadiusGraphParams &params,
   out.residual_scale = s;
   for (std::size_t v = 0; v < planes.size (); ++v)
   {
+    if (!search.isQuery (v))
+      continue;
     const PlaneResiduals &plane = planes[v];
     out.off_surface[search.graph.order[v]] =
         plane.residual > c * std::max<double> (s, plane.spread) &&
@@ -634,7 +741,7 @@ PointGraph
 buildRadiusGraph (const PointMatrix &points, const RadiusGraphParams &params,
                   double *radius_used)
 {
-  RadiusSearch search = prepareRadiusSearch (points, params);
+  RadiusSearch search = prepareRadiusSearch (points, params, false);
   std::vector<double> ().swap (search.mean_knn);  // only the degrees need it
   if (radius_used)
     *radius_used = search.radius;
@@ -680,34 +787,37 @@ radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params)
 {
   requireValid (std::isfinite (params.residual_multiplier) && params.residual_multiplier >= 0.0,
                 "residual_multiplier must be finite and >= 0");
-  RadiusSearch search = prepareRadiusSearch (points, params);
+  RadiusSearch search = prepareRadiusSearch (points, params, true);
   RadiusDegrees out;
   out.radius = search.radius;
   out.sigma = search.graph.sigma;
   out.spacing = search.graph.spacing;
-  const std::size_t n = search.graph.numVertices ();
-  out.degree.assign (n, 0.0);
-  out.mean_knn_distance.assign (n, 0.0f);
+  const std::size_t n = search.graph.numVertices (), q = search.num_queries;
+  out.degree.assign (q, 0.0);
+  out.mean_knn_distance.assign (q, 0.0f);
   const bool residuals = params.residual_multiplier > 0.0;
   if (residuals)
-    out.off_surface.assign (n, 0);
+    out.off_surface.assign (q, 0);
   if (n < 2)
     return out;
   for (std::size_t v = 0; v < n; ++v)
-    out.mean_knn_distance[search.graph.order[v]] = static_cast<float> (search.mean_knn[v]);
+    if (search.isQuery (v))
+      out.mean_knn_distance[search.graph.order[v]] = static_cast<float> (search.mean_knn[v]);
   std::vector<double> ().swap (search.mean_knn);
-  // The planes of the normal-residual test per vertex (graph order).
+  // The planes of the normal-residual test per vertex (graph order; the queries' only).
   const double floor = kResidualFloor * search.graph.spacing;
   std::vector<PlaneResiduals> planes (residuals ? n : 0);
+  const bool every = search.queries.empty ();
   detail::parallelFor (
-      n, params.num_threads,
+      every ? n : search.queries.size (), params.num_threads,
       [&] (std::size_t begin, std::size_t end) {
         std::vector<std::pair<VertexIndex, float>> scratch;
         std::vector<VertexIndex> neighbors;
         std::vector<double> weights;
         PlaneFit fit;
-        for (std::size_t i = begin; i < end; ++i)
+        for (std::size_t t = begin; t < end; ++t)
         {
+          const std::size_t i = every ? t : search.queries[t];
           neighbors.clear ();
           const auto vi = static_cast<VertexIndex> (i);
           search.tree->othersWithin (vi, static_cast<float> (search.radius), neighbors, scratch);

@@ -98,7 +98,8 @@ struct RadiusGraphParams
   /** Radius epsilon in the points' units. 0 (default) derives it from the data:
    *  epsilon = radius_factor * spacing, with spacing the median over the points of
    *  their mean distance to their `spacing_k` nearest neighbours (the median keeps
-   *  far outliers from inflating it). Valid: >= 0, finite. */
+   *  far outliers from inflating it), taken over the distinct positions when it is 0 (at
+   *  least half the points have spacing_k exact copies). Valid: >= 0, finite. */
   double radius = 0.0;
   /** Kernel width theta; 0 (default) = sigma_factor * spacing. Valid: >= 0, finite. */
   double sigma = 0.0;
@@ -112,6 +113,12 @@ struct RadiusGraphParams
   /** radiusGraphDegrees only: multiplier c of the normal-residual test, 0 (default) =
    *  no test. See RadiusDegrees::off_surface. Valid: >= 0, finite. */
   double residual_multiplier = 0.0;
+  /** radiusGraphDegrees only: the first `query_rows` rows of the points are the queries,
+   *  the others are searched as neighbours only (as PCL's filters search the whole cloud
+   *  for the points their indices name); 0 (default) = every row is a query. The
+   *  spacing, the residual test's noise scale and every per-point output are then the
+   *  queries' alone. Valid: <= the number of points. */
+  std::size_t query_rows = 0;
   /** Worker threads; 0 = all hardware threads. The result does not depend on it. */
   int num_threads = 0;
 };
@@ -173,7 +180,9 @@ buildRadiusGraph (const PointMatrix &points, const RadiusGraphParams &params = {
 /** \brief Weighted degrees of the epsilon-radius graph, without storing the graph. */
 struct RadiusDegrees
 {
-  std::vector<double> degree;  ///< degree of each point, in the caller's row order
+  /** Degree of each point, in the caller's row order (of the query rows only, with
+   *  RadiusGraphParams::query_rows; so are the other per-point vectors). */
+  std::vector<double> degree;
   double radius = 0.0;         ///< epsilon used
   double sigma = 0.0;          ///< theta used
   double spacing = 0.0;        ///< median mean k-NN distance (the derived scale)
@@ -206,6 +215,24 @@ struct RadiusDegrees
  *  \throws std::invalid_argument as buildKnnGraph. */
 RadiusDegrees
 radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params = {});
+
+/** \brief The distinct positions of a point set: rows with equal x, y and z are one. */
+struct DistinctPoints
+{
+  /** One row per distinct position, in the order of their first rows. */
+  PointMatrix points;
+  /** For each row of the input, the row of `points` at its position. */
+  std::vector<VertexIndex> of_row;
+  /** Input rows that repeat an earlier row's position (0: `points` is the input). */
+  std::size_t copies = 0;
+};
+
+/** \brief Merges the rows of `points` at the same position (exact float equality, -0 ==
+ *  0): a point sampled several times is one vertex of a graph, and every copy gets its
+ *  result. Without copies, `points` is left empty (the input is the answer) and `of_row`
+ *  is the identity. */
+DistinctPoints
+distinctPoints (const PointMatrix &points);
 
 /** \brief Gaussian edge weight exp(-d2 / (2 sigma^2)) of a squared length d2.
  *  Coincident points (d2 == 0) weigh 1 for any sigma; with sigma == 0 every other

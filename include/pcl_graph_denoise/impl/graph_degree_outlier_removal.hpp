@@ -100,7 +100,8 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
     return fail (indices);
   }
 
-  const GatheredPoints gathered = gatherFinitePoints (*input_, *indices_, name.c_str ());
+  GatheredPoints gathered = gatherFinitePoints (*input_, *indices_, name.c_str ());
+  addSearchSurface (*input_, gathered);
 
   // Degree of every gathered row.
   const std::size_t count = gathered.cloud_index.size ();
@@ -119,6 +120,8 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
     params.radius_factor = kRadiusFactor;
     params.sigma_factor = kSigmaFactor;
     params.num_threads = num_threads_;
+    if (gathered.surface_only > 0)
+      params.query_rows = count;
     if (rule_ != OUTLIER_FRACTION)
       params.residual_multiplier = residual_multiplier_;
     core::RadiusDegrees result = core::radiusGraphDegrees (gathered.xyz, params);

@@ -126,7 +126,8 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
   used_gamma_ = used_sigma_ = estimated_noise_ = 0.0;
   report_ = core::SolverReport{};
   components_ = core::GraphComponents{};
-  const GatheredPoints gathered = gatherFinitePoints (*input_, *indices_, name.c_str ());
+  GatheredPoints gathered = gatherFinitePoints (*input_, *indices_, name.c_str ());
+  addSearchSurface (*input_, gathered);
   if (gathered.cloud_index.empty ())
   {
     PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] The input has no finite point to "
@@ -137,7 +138,11 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
   if (!automatic_gamma_ && gamma_ == 0.0)
     return;  // the identity
 
-  const core::Signal3 start = gathered.xyz.template cast<double> ();
+  // Coincident points are one vertex: k copies of a point would otherwise fill its k
+  // neighbours and nothing could move. Every copy gets its position's result.
+  const core::DistinctPoints distinct = core::distinctPoints (gathered.xyz);
+  const core::Signal3 start =
+      (distinct.copies > 0 ? distinct.points : gathered.xyz).template cast<double> ();
   core::Signal3 position;
   try
   {
@@ -155,7 +160,15 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
     PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] %s.\n", name.c_str (), e.what ());
     return fail ();
   }
-  if (!writeDisplacements (gathered.cloud_index, start, position, output))
+  if (distinct.copies > 0)
+  {
+    core::Signal3 moved (gathered.xyz.rows (), 3);
+    for (Eigen::Index r = 0; r < moved.rows (); ++r)
+      moved.row (r) = position.row (distinct.of_row[static_cast<std::size_t> (r)]);
+    position = std::move (moved);
+  }
+  if (!writeDisplacements (gathered.cloud_index, gathered.xyz.template cast<double> (), position,
+                           output))
   {
     PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] The smoothed positions overflowed: "
                "gamma = %g is too large.\n", name.c_str (), used_gamma_);
