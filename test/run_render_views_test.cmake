@@ -46,7 +46,9 @@ foreach(name noisy smooth)
     "POINTS 400\nDATA ascii\n${${name}_points}")
 endforeach()
 
-set(xvfb ${XVFB_RUN} -a -s "-screen 0 1920x1080x24")
+include("${CMAKE_CURRENT_LIST_DIR}/xvfb.cmake")
+set(code_file "${WORK_DIR}/exit_code")
+xvfb_launcher(xvfb "${code_file}")
 
 # Two views, default size 1600x800.
 set(png "${WORK_DIR}/views.png")
@@ -54,6 +56,7 @@ execute_process(
   COMMAND ${xvfb} "${RENDER_VIEWS}" "${png}" noisy "${WORK_DIR}/noisy.pcd"
           smoothed "${WORK_DIR}/smooth.pcd"
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 300)
+xvfb_exit_code(rc "${code_file}")
 message("${out}${err}")
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "render_views failed with ${rc}")
@@ -83,6 +86,7 @@ execute_process(
           --view 0 0 -1 0 1 0 --point-size 5 --scalar-title "distance (units)" --fit 2
           noisy "${WORK_DIR}/noisy.pcd" smoothed "${WORK_DIR}/smooth.pcd" again "${WORK_DIR}/noisy.pcd"
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 300)
+xvfb_exit_code(rc "${code_file}")
 message("${out}${err}")
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "render_views with options failed with ${rc}")
@@ -98,6 +102,7 @@ execute_process(
   COMMAND ${xvfb} "${RENDER_VIEWS}" "${png}" --fit 3 noisy "${WORK_DIR}/noisy.pcd"
           smoothed "${WORK_DIR}/smooth.pcd"
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 300)
+xvfb_exit_code(rc "${code_file}")
 if(NOT rc EQUAL 2 OR NOT err MATCHES "--fit" OR EXISTS "${png}")
   message(FATAL_ERROR "render_views --fit 3 with two views: rc ${rc}, ${err}")
 endif()
@@ -108,6 +113,7 @@ execute_process(
   COMMAND ${xvfb} "${RENDER_VIEWS}" "${png}" noisy "${WORK_DIR}/noisy.pcd"
           absent "${WORK_DIR}/does_not_exist.pcd"
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 300)
+xvfb_exit_code(rc "${code_file}")
 message("${out}${err}")
 if(NOT rc EQUAL 2)
   message(FATAL_ERROR "render_views with a missing input returned ${rc}, expected 2")

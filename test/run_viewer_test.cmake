@@ -18,6 +18,8 @@ if(NOT XVFB_RUN)
 endif()
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
+include("${CMAKE_CURRENT_LIST_DIR}/xvfb.cmake")
+xvfb_launcher(xvfb "${WORK_DIR}/exit_code")
 
 # A run that renders loads Mesa's GL driver with dlopen and unloads it at exit, which
 # leaves allocations LeakSanitizer cannot attribute (reported in whatever library is
@@ -34,7 +36,7 @@ endif()
 # out and err.
 function(run_viewer expected pattern)
   set(args ${ARGN})
-  set(launcher ${XVFB_RUN} -a -s "-screen 0 1920x1080x24")
+  set(launcher ${xvfb})
   if(args AND args MATCHES "^NO_DISPLAY")
     list(POP_FRONT args)
     set(launcher ${CMAKE_COMMAND} -E env --unset=DISPLAY)
@@ -44,6 +46,7 @@ function(run_viewer expected pattern)
   endif()
   execute_process(COMMAND ${launcher} "${VIEWER}" ${args}
     RESULT_VARIABLE code OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr TIMEOUT 240)
+  xvfb_exit_code(code "${WORK_DIR}/exit_code")
   string(JOIN " " command ${args})
   message("viewer ${command}: exit ${code}\n${stdout}${stderr}")
   if(NOT code EQUAL expected OR NOT stderr MATCHES "${pattern}")
