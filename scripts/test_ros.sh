@@ -3,7 +3,7 @@
 # (as root; only what is missing), builds the library and
 # examples/ros/pcl_graph_denoise_ros with catkin_make_isolated in a catkin workspace in
 # ./build-ros/ws (whose src/ links to this clone and to the node), and runs the node's
-# rostest (test/denoise.test): noisy clouds through three configurations of the node,
+# rostest (test/denoise.test): noisy clouds through five configurations of the node,
 # bad clouds and bad parameters. Exits non-zero on any failure.
 #
 # rostest starts its own ROS master on a free port chosen by the system (never the

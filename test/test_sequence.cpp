@@ -120,6 +120,40 @@ TEST (SequenceSmoothing, NeighbouringFramesLowerTheErrorOfAStaticScene)
   EXPECT_LT (together, 0.9 * alone) << "noisy " << before << ", per frame " << alone;
 }
 
+TEST (SequenceSmoothing, ExactCopiesInAFrameAreOneVertex)
+{
+  // Every point of every frame 12 times: its 10 spatial neighbours would all be copies.
+  // A frame's copies are one vertex, so each copy moves as the point does in the
+  // sequence without copies (motion compensation on, as by default).
+  const Frames frames = sphereSequence (3, 1500, 0.02, 41);
+  Frames copies;
+  for (const auto &frame : frames)
+  {
+    auto repeated = std::make_shared<Cloud> ();
+    for (int c = 0; c < 12; ++c)
+      *repeated += *frame;
+    copies.push_back (repeated);
+  }
+  GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+  Outputs single, repeated;
+  ASSERT_TRUE (sequence.filter (frames, single));
+  ASSERT_TRUE (sequence.filter (copies, repeated));
+  ASSERT_EQ (repeated.size (), single.size ());
+  float largest = 0.0f, moved = 0.0f;
+  for (std::size_t f = 0; f < single.size (); ++f)
+  {
+    ASSERT_EQ (repeated[f]->size (), 12 * single[f]->size ());
+    for (std::size_t i = 0; i < repeated[f]->size (); ++i)
+    {
+      const auto &p = (*repeated[f])[i].getVector3fMap ();
+      largest = std::max (largest, (p - (*single[f])[i % single[f]->size ()].getVector3fMap ()).norm ());
+      moved = std::max (moved, (p - (*copies[f])[i].getVector3fMap ()).norm ());
+    }
+  }
+  EXPECT_LT (largest, 1e-5f);
+  EXPECT_GT (moved, 1e-3f);
+}
+
 TEST (SequenceSmoothing, MotionCompensationFollowsAMovingObject)
 {
   // A cube turning 2 degrees and sliding 0.03 (3 sigma) per frame: the paper's graph

@@ -27,6 +27,7 @@ namespace pcl_graph_denoise {
  * instance with pcl::IterativeClosestPoint; see examples/sequence_registration.cpp).
  * Points do not correspond across frames; frames may differ in size; a frame may be
  * empty or hold non-finite points (they pass through unchanged and are never used).
+ * A frame's exact copies of a point are one vertex, and every copy moves as one.
  *
  * Each frame t is denoised on the graph of the frames t - window ... t + window (those
  * that exist), and only frame t's points are kept from that solve. That makes the
@@ -108,7 +109,7 @@ public:
    *  copies never leave the solve. Default off (the paper's graph on the frames as they
    *  are): on a still scene it cannot tell a sensor's frame-to-frame correlated noise
    *  (depth quantisation, drift) from motion, and keeps what averaging would remove (the
-   *  fixed Kinect's frames stay 3.9 mm apart, median, against 1.6 mm without it); turn
+   *  fixed Kinect's frames stay 3.9 mm apart, median, against 1.9 mm without it); turn
    *  it on for surfaces that move between frames by more than about the noise. */
   inline void
   setMotionCompensation (bool on) { motion_compensation_ = on; }

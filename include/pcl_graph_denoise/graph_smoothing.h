@@ -144,7 +144,7 @@ public:
    *  normals, which needs no ground truth (core::selectGammaByRisk). It follows what the
    *  surface's detail allows at every scale, where the rule's detail term reads only
    *  bending wider than about 12 spacings (less smoothing on thin parts, more on smooth
-   *  ones); it costs about 19 extra runs on at most 50,000 points (four
+   *  ones); it costs about 18 extra runs on at most 50,000 points (four
    *  blocks of the cloud when larger). Assumes noise of the same level everywhere. Where
    *  the noise is larger than the point spacing it chooses too little smoothing
    *  (docs/evaluation.md, section 5). Used only while gamma is automatic. */
@@ -299,9 +299,10 @@ protected:
   : tolerance_ (tolerance), max_iterations_ (max_iterations)
   {}
 
-  /** \brief pcl::Filter's entry point: gathers the finite points named by the indices,
-   *  runs the passes (graph, gamma, smooth(), displacement) and writes x, y, z back
-   *  into a copy of the input. */
+  /** \brief pcl::Filter's entry point: gathers the finite points named by the indices
+   *  and the cloud's other finite points (searched as neighbours), merges exact copies,
+   *  runs the passes (graph, gamma, smooth(), displacement) and writes x, y, z of the
+   *  named points back into a copy of the input. */
   void
   applyFilter (PointCloud &output) override;
 

@@ -23,11 +23,13 @@
 
 namespace pcl_graph_denoise {
 
-/** \brief The finite points named by an index list, ready for the core. */
+/** \brief The finite points named by an index list, ready for the core (and, after
+ *  addSearchSurface, the cloud's other finite points as neighbours only). */
 struct GatheredPoints
 {
-  /** Positions relative to `origin`, one row per finite point, in index-list order.
-   *  Centring in double keeps float precision for geo-referenced coordinates. */
+  /** Positions relative to `origin`: one row per finite named point, in index-list order,
+   *  then the `surface_only` rows. Centring in double keeps float precision for
+   *  geo-referenced coordinates. */
   core::PointMatrix xyz;
   /** cloud_index[r] is the index in the cloud of row r of xyz. */
   pcl::Indices cloud_index;
@@ -35,7 +37,7 @@ struct GatheredPoints
   pcl::Indices non_finite;
   /** Number of entries of the list that repeat an earlier entry (used once). */
   std::size_t repeated = 0;
-  /** Subtracted from every position (mean of the finite points). */
+  /** Subtracted from every position (mean of the finite named points). */
   Eigen::Vector3d origin = Eigen::Vector3d::Zero ();
   /** Rows of xyz after the named points (addSearchSurface): the other finite points of
    *  the cloud, searched as neighbours only. Rows [0, cloud_index.size ()) are the named

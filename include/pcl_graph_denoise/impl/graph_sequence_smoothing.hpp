@@ -185,17 +185,20 @@ GraphSequenceSmoothing<PointT>::denoiseFrame (const std::vector<PointCloudConstP
   smoother.used_gamma_ = smoother.used_sigma_ = smoother.estimated_noise_ = 0.0;
   smoother.report_ = core::SolverReport{};
   smoother.components_ = core::GraphComponents{};
-  // Gather each frame's finite points; positions relative to the centre frame's mean.
+  // Gather each frame's finite points, positions relative to the centre frame's mean;
+  // a frame's exact copies are one vertex, as in the static filters.
   std::vector<GatheredPoints> gathered (window_frames.size ());
+  std::vector<core::DistinctPoints> distinct (window_frames.size ());
   std::size_t total = 0, centre_row = 0;
   for (std::size_t f = 0; f < window_frames.size (); ++f)
   {
     pcl::Indices all (window_frames[f]->size ());
     std::iota (all.begin (), all.end (), 0);
     gathered[f] = gatherFinitePoints (*window_frames[f], all);
+    distinct[f] = core::distinctPoints (gathered[f].xyz);
     if (f == centre)
       centre_row = total;
-    total += gathered[f].cloud_index.size ();
+    total += gathered[f].cloud_index.size () - distinct[f].copies;
   }
   const GatheredPoints &own = gathered[centre];
   if (own.cloud_index.empty ())
@@ -210,12 +213,13 @@ GraphSequenceSmoothing<PointT>::denoiseFrame (const std::vector<PointCloudConstP
   std::vector<std::size_t> frame_rows;
   core::Signal3 start (static_cast<Eigen::Index> (total), 3);
   Eigen::Index row = 0;
-  for (const GatheredPoints &g : gathered)
+  for (std::size_t f = 0; f < gathered.size (); ++f)
   {
-    const Eigen::RowVector3d offset = (g.origin - own.origin).transpose ();
-    frame_rows.push_back (g.cloud_index.size ());
-    for (Eigen::Index r = 0; r < g.xyz.rows (); ++r, ++row)
-      start.row (row) = g.xyz.row (r).template cast<double> () + offset;
+    const Eigen::RowVector3d offset = (gathered[f].origin - own.origin).transpose ();
+    const core::PointMatrix &points = distinct[f].copies > 0 ? distinct[f].points : gathered[f].xyz;
+    frame_rows.push_back (static_cast<std::size_t> (points.rows ()));
+    for (Eigen::Index r = 0; r < points.rows (); ++r, ++row)
+      start.row (row) = points.row (r).template cast<double> () + offset;
   }
 
   if (motion_compensation_)
@@ -223,7 +227,8 @@ GraphSequenceSmoothing<PointT>::denoiseFrame (const std::vector<PointCloudConstP
     // Each other frame moved onto the centre frame's surface (in single precision for
     // the search, as every graph of the core; the offsets are added in double).
     const core::PointMatrix reference =
-        start.middleRows (static_cast<Eigen::Index> (centre_row), own.xyz.rows ()).template cast<float> ();
+        start.middleRows (static_cast<Eigen::Index> (centre_row),
+                          static_cast<Eigen::Index> (frame_rows[centre])).template cast<float> ();
     core::SurfaceOffsetParams offset_params;
     offset_params.num_threads = smoother.num_threads_;
     Eigen::Index first = 0;
@@ -278,10 +283,18 @@ GraphSequenceSmoothing<PointT>::denoiseFrame (const std::vector<PointCloudConstP
     output.reset ();
     return false;
   }
+  // The centre frame's rows, every copy from its position's vertex.
   const auto rows = static_cast<Eigen::Index> (own.cloud_index.size ());
   const auto first = static_cast<Eigen::Index> (centre_row);
-  if (!writeDisplacements (own.cloud_index, core::Signal3 (start.middleRows (first, rows)),
-                           core::Signal3 (position.middleRows (first, rows)), *output))
+  core::Signal3 own_start (rows, 3), own_position (rows, 3);
+  for (Eigen::Index r = 0; r < rows; ++r)
+  {
+    const Eigen::Index v =
+        first + static_cast<Eigen::Index> (distinct[centre].of_row[static_cast<std::size_t> (r)]);
+    own_start.row (r) = start.row (v);
+    own_position.row (r) = position.row (v);
+  }
+  if (!writeDisplacements (own.cloud_index, own_start, own_position, *output))
   {
     PCL_ERROR ("[pcl_graph_denoise::%s::filter] The smoothed positions overflowed: gamma = "
                "%g is too large.\n", kName, smoother.used_gamma_);
