@@ -160,15 +160,17 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
     PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] %s.\n", name.c_str (), e.what ());
     return fail ();
   }
+  core::Signal3 copies_start;  // with copies: every row's start (else `start` is)
   if (distinct.copies > 0)
   {
     core::Signal3 moved (gathered.xyz.rows (), 3);
     for (Eigen::Index r = 0; r < moved.rows (); ++r)
       moved.row (r) = position.row (distinct.of_row[static_cast<std::size_t> (r)]);
     position = std::move (moved);
+    copies_start = gathered.xyz.template cast<double> ();
   }
-  if (!writeDisplacements (gathered.cloud_index, gathered.xyz.template cast<double> (), position,
-                           output))
+  if (!writeDisplacements (gathered.cloud_index, distinct.copies > 0 ? copies_start : start,
+                           position, output))
   {
     PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] The smoothed positions overflowed: "
                "gamma = %g is too large.\n", name.c_str (), used_gamma_);
