@@ -127,7 +127,6 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
   report_ = core::SolverReport{};
   components_ = core::GraphComponents{};
   GatheredPoints gathered = gatherFinitePoints (*input_, *indices_, name.c_str ());
-  addSearchSurface (*input_, gathered);
   if (gathered.cloud_index.empty ())
   {
     PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] The input has no finite point to "
@@ -137,6 +136,7 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
   }
   if (!automatic_gamma_ && gamma_ == 0.0)
     return;  // the identity
+  addSearchSurface (*input_, gathered);
 
   // Coincident points are one vertex: k copies of a point would otherwise fill its k
   // neighbours and nothing could move. Every copy gets its position's result.
