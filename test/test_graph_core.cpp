@@ -136,6 +136,97 @@ TEST (KnnGraph, MatchesBruteForceNeighboursAndWeights)
   }
 }
 
+namespace {
+
+/** The k-NN edge set (both directions, in the caller's rows) by brute force in single
+ *  precision, with the search's own arithmetic ((dx^2 + dy^2) + dz^2), nearest by
+ *  (distance, vertex): ties go to the vertex first in the graph's `order`. */
+std::set<std::pair<int, int>>
+bruteKnnEdgesFloat (const PointMatrix &p, int k, const std::vector<VertexIndex> &order)
+{
+  const int n = static_cast<int> (p.rows ());
+  std::set<std::pair<int, int>> edges;
+  std::vector<std::pair<float, int>> all;
+  for (int v = 0; v < n; ++v)
+  {
+    const int i = static_cast<int> (order[v]);
+    all.clear ();
+    for (int w = 0; w < n; ++w)
+      if (w != v)
+      {
+        const int j = static_cast<int> (order[w]);
+        const float dx = p (i, 0) - p (j, 0), dy = p (i, 1) - p (j, 1), dz = p (i, 2) - p (j, 2);
+        all.emplace_back (dx * dx + dy * dy + dz * dz, w);
+      }
+    std::partial_sort (all.begin (), all.begin () + k, all.end ());
+    for (int m = 0; m < k; ++m)
+    {
+      const int j = static_cast<int> (order[all[m].second]);
+      edges.insert ({i, j});
+      edges.insert ({j, i});
+    }
+  }
+  return edges;
+}
+
+} // namespace
+
+TEST (KnnGraph, MatchesBruteForceWithOutliersFarPointsAndUnevenDensity)
+{
+  // The search settles most points on a grid of cells and the rest in a k-d tree: each
+  // cloud here sends many points down the second way. Uniform outliers around a noisy
+  // sphere (alone in their cells); two points a million units away (they stretch the
+  // grid until the sphere fills a handful of crowded cells); a density that varies by
+  // twelve orders of magnitude (no one cell size suits it); a line and a plane (cells
+  // that hold the surface along one or two axes only); a lattice and a cloud of copies
+  // (exact ties: the lower index wins, in the grid and the tree alike).
+  std::mt19937 rng (11);
+  std::normal_distribution<float> g (0.0f, 1.0f);
+  std::uniform_real_distribution<float> u (-1.0f, 1.0f);
+  const int n = 2500;
+  const auto onSphere = [&] () {
+    const Eigen::Vector3f s = Eigen::Vector3f (g (rng), g (rng), g (rng)).normalized ();
+    return Eigen::Vector3f (s + 0.01f * Eigen::Vector3f (g (rng), g (rng), g (rng)));
+  };
+  std::vector<std::pair<const char *, PointMatrix>> clouds;
+  PointMatrix outliers (n, 3), far (n, 3), uneven (n, 3), line (n, 3), plane (n, 3);
+  for (int i = 0; i < n; ++i)
+  {
+    outliers.row (i) = (i % 20 == 0 ? Eigen::Vector3f (1.2f * u (rng), 1.2f * u (rng), 1.2f * u (rng))
+                                    : onSphere ()).transpose ();
+    far.row (i) = onSphere ().transpose ();
+    const float radius = std::pow (10.0f, 6.0f * u (rng));
+    uneven.row (i) = (radius * onSphere ()).transpose ();
+    line.row (i) << 5.0f * u (rng), 0.001f * u (rng), 0.0f;
+    plane.row (i) << u (rng), u (rng), 0.0f;
+  }
+  PointMatrix lattice (n, 3), copies (n, 3);
+  for (int i = 0; i < n; ++i)
+  {
+    lattice.row (i) << float (i % 50), float (i / 50), 0.0f;
+    copies.row (i) = outliers.row (i % (n / 5));
+  }
+  lattice.row (0) << 1e6f, 0.0f, 0.0f;  // and one far point: it goes to the tree
+  far.row (0) << 1e6f, 1e6f, -1e6f;
+  far.row (1) << -1e6f, 3.0f, 2.0f;
+  clouds = {{"outliers", outliers}, {"far points", far}, {"uneven density", uneven}, {"line", line}, {"plane", plane},
+            {"lattice", lattice}, {"copies", copies}};
+  for (const int k : {1, 10, 25})
+    for (const auto &cloud : clouds)
+    {
+      KnnGraphParams params;
+      params.k = k;
+      params.num_threads = 1;
+      const PointGraph graph = buildKnnGraph (cloud.second, params);
+      std::set<std::pair<int, int>> got;
+      for (const auto &e : edgesInCallerOrder (graph))
+        got.insert (e.first);
+      EXPECT_EQ (got, bruteKnnEdgesFloat (cloud.second, k, graph.order)) << cloud.first << ", k = " << k;
+      params.num_threads = 3;
+      expectSameGraph (graph, buildKnnGraph (cloud.second, params));
+    }
+}
+
 // ---- Spatio-temporal graph ------------------------------------------------------------
 
 namespace {

@@ -7,6 +7,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "huge_pages.h"
 #include "neighbor_search.h"
 #include "parallel.h"
 #include "spatial_order.h"
@@ -93,119 +94,90 @@ squaredDistance (const PointMatrix &p, VertexIndex i, VertexIndex j)
 }
 
 /** Union of a directed graph and its transpose (edge if i->j or j->i), weighted by
- *  the Gaussian of the edge length. Rows come out sorted, without duplicates. */
+ *  the Gaussian of the edge length. The rows of `directed` hold no vertex twice. Rows
+ *  come out sorted, without duplicates. */
 void
 symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, int num_threads,
             PointGraph &graph)
 {
   const std::size_t n = static_cast<std::size_t> (points.rows ());
+  const auto has = [&] (std::size_t row, VertexIndex j) {
+    bool found = false;
+    for (std::uint64_t e = directed.ptr[row]; e < directed.ptr[row + 1]; ++e)
+      found |= directed.idx[e] == j;
+    return found;
+  };
 
-  // Transpose by counting, on all threads: atomic counters and cursors; the order in
-  // which a row is filled depends on scheduling, so each row is sorted afterwards.
-  std::vector<std::atomic<std::uint32_t>> cursor (n);
+  // Most k-NN links are mutual: only the others add an entry to the row they point
+  // to. Count those per row on all threads (atomic counters), then place them (the
+  // order within a row depends on scheduling: every row is sorted afterwards).
+  std::vector<std::atomic<std::uint32_t>> extra (n);
   detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
-      cursor[i].store (0, std::memory_order_relaxed);
+      extra[i].store (0, std::memory_order_relaxed);
   });
-  detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
-    for (std::uint64_t e = directed.ptr[begin]; e < directed.ptr[end]; ++e)
-      cursor[directed.idx[e]].fetch_add (1, std::memory_order_relaxed);
-  });
-  std::vector<std::uint64_t> tptr (n + 1, 0);
-  for (std::size_t j = 0; j < n; ++j)
+  detail::parallelFor (
+      n, num_threads,
+      [&] (std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i)
+          for (std::uint64_t e = directed.ptr[i]; e < directed.ptr[i + 1]; ++e)
+          {
+            const VertexIndex j = directed.idx[e];
+            if (!has (j, static_cast<VertexIndex> (i)))
+              extra[j].fetch_add (1, std::memory_order_relaxed);
+          }
+      },
+      kBlock);
+  graph.row_ptr.assign (n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i)
   {
-    tptr[j + 1] = tptr[j] + cursor[j].load (std::memory_order_relaxed);
-    cursor[j].store (0, std::memory_order_relaxed);
+    graph.row_ptr[i + 1] = graph.row_ptr[i] + (directed.ptr[i + 1] - directed.ptr[i]) +
+                           extra[i].load (std::memory_order_relaxed);
+    extra[i].store (0, std::memory_order_relaxed);
   }
-  std::vector<VertexIndex> tidx (directed.idx.size ());
-  detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i)
-      for (std::uint64_t e = directed.ptr[i]; e < directed.ptr[i + 1]; ++e)
-      {
-        const VertexIndex j = directed.idx[e];
-        tidx[tptr[j] + cursor[j].fetch_add (1, std::memory_order_relaxed)] =
-            static_cast<VertexIndex> (i);
-      }
-  });
-
-  // Sort out-going rows, then count the size of each merged row.
-  std::vector<std::uint64_t> row_size (n + 1, 0);
+  detail::resizeOnHugePages (graph.col, graph.row_ptr[n]);
+  detail::resizeOnHugePages (graph.weight, graph.row_ptr[n]);
+  // Each row: its out-going links first, then the others' links to it.
   detail::parallelFor (
       n, num_threads,
       [&] (std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i)
         {
-          auto first = directed.idx.begin () + directed.ptr[i];
-          auto last = directed.idx.begin () + directed.ptr[i + 1];
-          std::sort (first, last);
-          auto tfirst = tidx.begin () + tptr[i];
-          auto tlast = tidx.begin () + tptr[i + 1];
-          std::sort (tfirst, tlast);
-          std::uint64_t count = 0;
-          while (first != last || tfirst != tlast)
+          std::copy (directed.idx.begin () + directed.ptr[i], directed.idx.begin () + directed.ptr[i + 1],
+                     graph.col.begin () + graph.row_ptr[i]);
+          for (std::uint64_t e = directed.ptr[i]; e < directed.ptr[i + 1]; ++e)
           {
-            if (tfirst == tlast || (first != last && *first < *tfirst))
-              ++first;
-            else if (first == last || *tfirst < *first)
-              ++tfirst;
-            else
-              ++first, ++tfirst;
-            ++count;
+            const VertexIndex j = directed.idx[e];
+            if (!has (j, static_cast<VertexIndex> (i)))
+              graph.col[graph.row_ptr[j] + (directed.ptr[j + 1] - directed.ptr[j]) +
+                        extra[j].fetch_add (1, std::memory_order_relaxed)] = static_cast<VertexIndex> (i);
           }
-          row_size[i + 1] = count;
         }
       },
       kBlock);
-
-  graph.row_ptr.assign (n + 1, 0);
-  std::partial_sum (row_size.begin (), row_size.end (), graph.row_ptr.begin ());
-  graph.col.resize (graph.row_ptr[n]);
-  graph.weight.resize (graph.row_ptr[n]);
-
   detail::parallelFor (
       n, num_threads,
       [&] (std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i)
         {
-          auto first = directed.idx.begin () + directed.ptr[i];
-          auto last = directed.idx.begin () + directed.ptr[i + 1];
-          auto tfirst = tidx.begin () + tptr[i];
-          auto tlast = tidx.begin () + tptr[i + 1];
-          std::uint64_t out = graph.row_ptr[i];
-          while (first != last || tfirst != tlast)
-          {
-            VertexIndex j;
-            if (tfirst == tlast || (first != last && *first < *tfirst))
-              j = *first++;
-            else if (first == last || *tfirst < *first)
-              j = *tfirst++;
-            else
-              j = *first++, ++tfirst;
-            graph.col[out] = j;
-            graph.weight[out] =
-                gaussianWeight (squaredDistance (points, static_cast<VertexIndex> (i), j), sigma);
-            ++out;
-          }
+          const auto first = graph.col.begin () + graph.row_ptr[i];
+          const auto last = graph.col.begin () + graph.row_ptr[i + 1];
+          std::sort (first, last);
+          for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+            graph.weight[e] = gaussianWeight (
+                squaredDistance (points, static_cast<VertexIndex> (i), graph.col[e]), sigma);
         }
       },
       kBlock);
 }
 
 /** Per-point mean distance to its k nearest other points (k < n), for the vertices in
- *  `vertices` (all when it is null; the others' entries stay 0). Also fills the directed
- *  k-NN lists when `lists` is not null (then for every vertex). */
+ *  `vertices` (all when it is null; the others' entries stay 0). */
 std::vector<double>
 meanKnnDistances (const detail::KdTree &tree, std::size_t n, int k, int num_threads,
-                  DirectedLists *lists, const std::vector<VertexIndex> *vertices = nullptr)
+                  const std::vector<VertexIndex> *vertices = nullptr)
 {
   std::vector<double> mean (n, 0.0);
-  if (lists)
-  {
-    lists->ptr.resize (n + 1);
-    for (std::size_t i = 0; i <= n; ++i)
-      lists->ptr[i] = static_cast<std::uint64_t> (i) * k;
-    lists->idx.resize (n * static_cast<std::size_t> (k));
-  }
   detail::parallelFor (
       vertices ? vertices->size () : n, num_threads,
       [&] (std::size_t begin, std::size_t end) {
@@ -214,8 +186,7 @@ meanKnnDistances (const detail::KdTree &tree, std::size_t n, int k, int num_thre
         for (std::size_t t = begin; t < end; ++t)
         {
           const std::size_t i = vertices ? (*vertices)[t] : t;
-          VertexIndex *out = lists ? lists->idx.data () + i * k : idx.data ();
-          tree.nearestOthers (static_cast<VertexIndex> (i), k, out, d2.data (), scratch_idx,
+          tree.nearestOthers (static_cast<VertexIndex> (i), k, idx.data (), d2.data (), scratch_idx,
                               scratch_d2);
           double sum = 0.0;
           for (int m = 0; m < k; ++m)
@@ -318,7 +289,9 @@ buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params)
   validatePoints (points);
 
   PointGraph graph;
-  const PointMatrix ordered = orderVertices (points, params.num_threads, graph);
+  detail::MortonSort sorted = detail::mortonSort (points, params.num_threads);
+  const PointMatrix ordered = detail::reorderPoints (points, sorted.order);
+  graph.order = std::move (sorted.order);
   const std::size_t n = graph.order.size ();
   graph.row_ptr.assign (n + 1, 0);
   if (n < 2)
@@ -328,9 +301,14 @@ buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params)
   requireMemory (knnGraphMemory (n, static_cast<std::size_t> (k)), params.memory_limit,
                  "the k-NN graph of " + std::to_string (n) + " points with k = " +
                      std::to_string (k));
-  const detail::KdTree tree (ordered);
   DirectedLists directed;
-  const std::vector<double> mean = meanKnnDistances (tree, n, k, params.num_threads, &directed);
+  directed.ptr.resize (n + 1);
+  for (std::size_t i = 0; i <= n; ++i)
+    directed.ptr[i] = static_cast<std::uint64_t> (i) * k;
+  detail::resizeOnHugePages (directed.idx, n * static_cast<std::size_t> (k));
+  std::vector<double> mean (n);
+  detail::allNearestOthers (ordered, sorted, k, params.num_threads, directed.idx.data (), mean.data ());
+  std::vector<std::uint64_t> ().swap (sorted.codes);
   graph.spacing = std::accumulate (mean.begin (), mean.end (), 0.0) / double (n);
   graph.sigma = params.sigma > 0.0 ? params.sigma : graph.spacing / std::sqrt (2.0);
   symmetrise (ordered, directed, graph.sigma, params.num_threads, graph);
@@ -524,7 +502,7 @@ distinctSpacing (const RadiusSearch &search, const RadiusGraphParams &params)
     return 0.0;
   const detail::KdTree tree (points);
   const int k = static_cast<int> (std::min<std::size_t> (params.spacing_k, m - 1));
-  std::vector<double> mean = meanKnnDistances (tree, m, k, params.num_threads, nullptr);
+  std::vector<double> mean = meanKnnDistances (tree, m, k, params.num_threads);
   std::nth_element (mean.begin (), mean.begin () + m / 2, mean.end ());
   return mean[m / 2];
 }
@@ -562,7 +540,7 @@ prepareRadiusSearch (const PointMatrix &points, const RadiusGraphParams &params,
   search.tree.reset (new detail::KdTree (search.ordered));
   const int k = static_cast<int> (std::min<std::size_t> (params.spacing_k, n - 1));
   const std::vector<VertexIndex> *subset = search.queries.empty () ? nullptr : &search.queries;
-  search.mean_knn = meanKnnDistances (*search.tree, n, k, params.num_threads, nullptr, subset);
+  search.mean_knn = meanKnnDistances (*search.tree, n, k, params.num_threads, subset);
   std::vector<double> mean;
   if (subset)
     for (const VertexIndex v : search.queries)

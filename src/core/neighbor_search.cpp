@@ -9,7 +9,13 @@
 #define NANOFLANN_FIRST_MATCH
 #include <nanoflann.hpp>
 
+#include "parallel.h"
+
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <limits>
 
 namespace pcl_graph_denoise {
 namespace core {
@@ -90,6 +96,15 @@ KdTree::nearest (const float *query, int k, VertexIndex *indices, float *squared
 }
 
 void
+KdTree::withinSquared (const float *query, float squared_radius,
+                       std::vector<std::pair<VertexIndex, float>> &found) const
+{
+  std::vector<std::pair<VertexIndex, float>> hits;
+  impl_->tree.radiusSearch (query, squared_radius, hits, nanoflann::SearchParams (32, 0.0f, false));
+  found.insert (found.end (), hits.begin (), hits.end ());
+}
+
+void
 KdTree::othersWithin (VertexIndex self, float radius, std::vector<VertexIndex> &neighbors,
                       std::vector<std::pair<VertexIndex, float>> &scratch) const
 {
@@ -101,6 +116,421 @@ KdTree::othersWithin (VertexIndex self, float radius, std::vector<VertexIndex> &
   for (const auto &hit : scratch)
     if (hit.first != self)
       neighbors.push_back (hit.first);
+}
+
+
+namespace {
+
+/** The k nearest candidates offered so far, by (squared distance, index), ascending:
+ *  each packed in 64 bits, the distance's bits above the index (a non-negative float's
+ *  bits order as the float does), so that comparing two is one integer comparison. */
+class NearestK
+{
+public:
+  explicit NearestK (std::size_t k) : key_ (k) {}
+
+  void
+  clear () { std::fill (key_.begin (), key_.end (), kNone); }
+
+  /** The k-th squared distance so far, infinite while fewer than k were offered. */
+  float
+  worst () const
+  {
+    return key_.back () == kNone ? std::numeric_limits<float>::infinity () : distance (key_.back ());
+  }
+
+  bool
+  full () const { return key_.back () != kNone; }
+
+  static std::uint64_t
+  key (float d2, VertexIndex id)
+  {
+    std::uint32_t bits;
+    std::memcpy (&bits, &d2, sizeof bits);
+    return (std::uint64_t (bits) << 32) | id;
+  }
+
+  /** The k keys from `keys` (the k smallest of a list, in any order). */
+  void
+  take (const std::uint64_t *keys)
+  {
+    std::copy (keys, keys + key_.size (), key_.begin ());
+    std::sort (key_.begin (), key_.end ());
+  }
+
+  void
+  offer (float d2, VertexIndex id)
+  {
+    const std::uint64_t key = NearestK::key (d2, id);
+    if (key >= key_.back ())
+      return;
+    std::size_t p = key_.size () - 1;
+    for (; p > 0 && key_[p - 1] > key; --p)
+      key_[p] = key_[p - 1];
+    key_[p] = key;
+  }
+
+  /** Writes the indices; returns the mean distance. */
+  double
+  write (VertexIndex *indices) const
+  {
+    double sum = 0.0;
+    for (std::size_t m = 0; m < key_.size (); ++m)
+    {
+      indices[m] = static_cast<VertexIndex> (key_[m]);
+      sum += std::sqrt (double (distance (key_[m])));
+    }
+    return sum / double (key_.size ());
+  }
+
+private:
+  static constexpr std::uint64_t kNone = ~std::uint64_t (0);
+
+  static float
+  distance (std::uint64_t key)
+  {
+    const auto bits = static_cast<std::uint32_t> (key >> 32);
+    float d2;
+    std::memcpy (&d2, &bits, sizeof d2);
+    return d2;
+  }
+
+  std::vector<std::uint64_t> key_;
+};
+
+/** The guess of a point's k-th squared distance: the previous point's times this. */
+constexpr float kGuessWidening = 1.5f;
+
+/** Relative slack of the comparisons between single-precision squared distances and
+ *  the cells' faces in double precision: far larger than the rounding of either. */
+constexpr double kSlack = 1e-5;
+
+/** The grid's cells: the finest at which half the points lie in cells of at least
+ *  max(kMinOccupancy, k) points. */
+constexpr std::size_t kMinOccupancy = 4;
+/** Cells of more than this many times that occupancy are searched in the k-d tree. */
+constexpr std::size_t kCrowdedCell = 16;
+
+/** Open-addressing map from the codes of the grid's cells to their index. */
+class CellTable
+{
+public:
+  explicit CellTable (const std::vector<std::uint64_t> &keys)
+  {
+    std::size_t size = 16;
+    while (size < 2 * keys.size ())
+      size *= 2;
+    mask_ = size - 1;
+    key_.assign (size, kEmpty);
+    cell_.resize (size);
+    for (std::size_t c = 0; c < keys.size (); ++c)
+    {
+      std::size_t h = slot (keys[c]);
+      while (key_[h] != kEmpty)
+        h = (h + 1) & mask_;
+      key_[h] = keys[c];
+      cell_[h] = static_cast<VertexIndex> (c);
+    }
+  }
+
+  /** The cell with this code, or -1. */
+  std::int64_t
+  find (std::uint64_t key) const
+  {
+    for (std::size_t h = slot (key);; h = (h + 1) & mask_)
+    {
+      if (key_[h] == key)
+        return cell_[h];
+      if (key_[h] == kEmpty)
+        return -1;
+    }
+  }
+
+private:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t (0);  // no code has 64 bits set
+
+  std::size_t
+  slot (std::uint64_t key) const { return std::size_t ((key * 0x9E3779B97F4A7C15ULL) >> 32) & mask_; }
+
+  std::size_t mask_ = 0;
+  std::vector<std::uint64_t> key_;
+  std::vector<VertexIndex> cell_;
+};
+
+} // namespace
+
+void
+allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, int num_threads,
+                  VertexIndex *indices, double *mean_distances)
+{
+  const std::size_t n = sorted.codes.size ();
+  const auto kk = static_cast<std::size_t> (k);
+  if (n == 0 || k < 1)
+    return;
+  const MortonGrid &grid = sorted.grid;
+  const int bits = grid.axis_bits;
+
+  // Level at which each point and the previous one first fall in different cells: that
+  // of their codes' highest differing bit (0: the same cell at every level).
+  std::vector<std::uint8_t> split (n, 0);
+  parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
+    for (std::size_t v = std::max<std::size_t> (begin, 1); v < end; ++v)
+    {
+      const std::uint64_t diff = sorted.codes[v] ^ sorted.codes[v - 1];
+      if (diff != 0)
+        split[v] = static_cast<std::uint8_t> (bits - (63 - __builtin_clzll (diff)) / 3);
+    }
+  });
+  // The grid's level: the finest at which half the points or more lie in cells of at
+  // least `occupancy` points (the median point's cell: outliers in cells of their own
+  // do not make it coarser).
+  const std::size_t occupancy = std::max<std::size_t> (kMinOccupancy, kk);
+  const auto crowded = [&] (int level) {  // the points in cells of `occupancy` or more
+    std::size_t count = 0, run = 0;
+    for (std::size_t v = 0; v < n; ++v)
+    {
+      if (v > 0 && split[v] != 0 && split[v] <= level)
+      {
+        count += run >= occupancy ? run : 0;
+        run = 0;
+      }
+      ++run;
+    }
+    return count + (run >= occupancy ? run : 0);
+  };
+  int level = 0;
+  for (int coarse = 1, fine = bits; coarse <= fine;)
+  {
+    const int middle = (coarse + fine) / 2;
+    if (2 * crowded (middle) >= n)
+      level = middle, coarse = middle + 1;
+    else
+      fine = middle - 1;
+  }
+  std::vector<VertexIndex> start;  // the cells: runs of points, start[c] .. start[c + 1]
+  std::vector<std::uint64_t> keys;
+  const int shift = 3 * (bits - level);
+  for (std::size_t v = 0; v < n; ++v)
+    if (v == 0 || (split[v] != 0 && split[v] <= level))
+    {
+      start.push_back (static_cast<VertexIndex> (v));
+      keys.push_back (sorted.codes[v] >> shift);
+    }
+  start.push_back (static_cast<VertexIndex> (n));
+  std::vector<std::uint8_t> ().swap (split);
+  const CellTable table (keys);
+  const auto side = std::int64_t (1) << level;  // cells per axis
+  const double width = grid.scale > 0.0 ? double (std::uint64_t (1) << (bits - level)) / grid.scale
+                                        : std::numeric_limits<double>::infinity ();
+  const std::size_t crowd = kCrowdedCell * occupancy;
+  const auto size = [&] (std::size_t c) { return std::size_t (start[c + 1] - start[c]); };
+  // The 26 neighbouring cells, nearest first: faces, edges, corners.
+  std::vector<std::array<int, 3>> around;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if (dx != 0 || dy != 0 || dz != 0)
+          around.push_back ({dx, dy, dz});
+  std::stable_sort (around.begin (), around.end (), [] (const auto &a, const auto &b) {
+    return std::abs (a[0]) + std::abs (a[1]) + std::abs (a[2]) <
+           std::abs (b[0]) + std::abs (b[1]) + std::abs (b[2]);
+  });
+
+  // The grid settles most points; the others (in crowded cells, or whose k-th neighbour
+  // may lie beyond the 27 cells) are searched in a k-d tree afterwards.
+  std::vector<std::uint8_t> unsettled (n, 0);
+  parallelFor (
+      keys.size (), num_threads,
+      [&] (std::size_t first_cell, std::size_t last_cell) {
+        std::vector<float> cx, cy, cz, d2;
+        std::vector<VertexIndex> cid;
+        struct Neighbour
+        {
+          std::size_t begin, end;  // its points among the candidates
+          double low[3], high[3];  // its faces
+        };
+        std::vector<Neighbour> cells;
+        NearestK best (kk);
+        std::vector<std::uint64_t> within;
+        float guess = std::numeric_limits<float>::infinity ();
+        for (std::size_t c = first_cell; c < last_cell; ++c)
+        {
+          const auto defer = [&] () { std::fill (unsettled.begin () + start[c], unsettled.begin () + start[c + 1], 1); };
+          if (size (c) > crowd)
+          {
+            defer ();
+            continue;
+          }
+          const std::int64_t cell[3] = {std::int64_t (deinterleave (keys[c], 0)),
+                                        std::int64_t (deinterleave (keys[c], 1)),
+                                        std::int64_t (deinterleave (keys[c], 2))};
+          // The candidates: the cell's own points first, then each neighbour's.
+          cx.clear ();
+          cy.clear ();
+          cz.clear ();
+          cid.clear ();
+          cells.clear ();
+          bool crowded_around = false;
+          const auto gather = [&] (std::size_t other, const std::int64_t *at) {
+            Neighbour cell_of;
+            cell_of.begin = cid.size ();
+            for (VertexIndex p = start[other]; p < start[other + 1]; ++p)
+            {
+              cx.push_back (points (p, 0));
+              cy.push_back (points (p, 1));
+              cz.push_back (points (p, 2));
+              cid.push_back (p);
+            }
+            cell_of.end = cid.size ();
+            for (int d = 0; d < 3; ++d)
+            {
+              cell_of.low[d] = grid.lo (d) + double (at[d]) * width;
+              cell_of.high[d] = cell_of.low[d] + width;
+            }
+            cells.push_back (cell_of);
+          };
+          gather (c, cell);
+          for (const auto &offset : around)
+          {
+            const std::int64_t at[3] = {cell[0] + offset[0], cell[1] + offset[1], cell[2] + offset[2]};
+            if (at[0] < 0 || at[1] < 0 || at[2] < 0 || at[0] >= side || at[1] >= side || at[2] >= side)
+              continue;
+            const std::int64_t other = table.find (interleave (std::uint64_t (at[0]), std::uint64_t (at[1]),
+                                                               std::uint64_t (at[2])));
+            if (other < 0)
+              continue;
+            if (size (std::size_t (other)) > crowd)
+            {
+              crowded_around = true;
+              break;
+            }
+            gather (std::size_t (other), at);
+          }
+          if (crowded_around || cid.size () <= kk)
+          {
+            defer ();
+            continue;
+          }
+          // A point is settled when its k-th distance is below its distance to every
+          // cell outside the 27 (none lies beyond the grid's edges).
+          double low[3], high[3];
+          for (int d = 0; d < 3; ++d)
+          {
+            low[d] = cell[d] == 0 ? -std::numeric_limits<double>::infinity ()
+                                  : grid.lo (d) + double (cell[d] - 1) * width;
+            high[d] = cell[d] + 1 >= side ? std::numeric_limits<double>::infinity ()
+                                          : grid.lo (d) + double (cell[d] + 2) * width;
+          }
+          d2.resize (cid.size ());
+          within.resize (cid.size () + 1);
+          for (VertexIndex v = start[c]; v < start[c + 1]; ++v)
+          {
+            const float x = points (v, 0), y = points (v, 1), z = points (v, 2);
+            const double q[3] = {x, y, z};
+            const std::size_t self = v - start[c];
+            const auto gap2 = [&] (const Neighbour &cell_of) {
+              double sum = 0.0;
+              for (int d = 0; d < 3; ++d)
+              {
+                const double gap = q[d] < cell_of.low[d] ? cell_of.low[d] - q[d]
+                                   : q[d] > cell_of.high[d] ? q[d] - cell_of.high[d] : 0.0;
+                sum += gap * gap;
+              }
+              return sum;
+            };
+            const auto distances = [&] (const Neighbour &cell_of) {
+              for (std::size_t j = cell_of.begin; j < cell_of.end; ++j)
+              {
+                const float ex = x - cx[j], ey = y - cy[j], ez = z - cz[j];
+                d2[j] = ex * ex + ey * ey + ez * ez;
+              }
+            };
+            // First within a guess of the k-th distance (the previous point's, a little
+            // wider): the candidates within it, if k or more, hold the k nearest.
+            std::size_t found = 0;
+            if (guess < std::numeric_limits<float>::infinity ())
+            {
+              for (std::size_t b = 0; b < cells.size (); ++b)
+              {
+                if (b > 0 && gap2 (cells[b]) > double (guess) * (1.0 + kSlack))
+                  continue;
+                distances (cells[b]);
+                for (std::size_t j = cells[b].begin; j < cells[b].end; ++j)
+                {
+                  within[found] = NearestK::key (d2[j], cid[j]);
+                  found += (d2[j] <= guess) & (j != self);
+                }
+              }
+            }
+            if (found >= kk)
+            {
+              std::nth_element (within.begin (), within.begin () + (kk - 1), within.begin () + found);
+              best.take (within.data ());
+            }
+            else
+            {
+              // Else the own cell, then the neighbours that can hold anything nearer
+              // than the k-th so far.
+              best.clear ();
+              for (std::size_t b = 0; b < cells.size (); ++b)
+              {
+                float worst = best.worst ();
+                if (b > 0 && gap2 (cells[b]) > double (worst) * (1.0 + kSlack))
+                  continue;
+                distances (cells[b]);
+                for (std::size_t j = cells[b].begin; j < cells[b].end; ++j)
+                  if (d2[j] <= worst && j != self)
+                  {
+                    best.offer (d2[j], cid[j]);
+                    worst = best.worst ();
+                  }
+              }
+            }
+            if (best.full ())
+              guess = best.worst () * kGuessWidening;
+            double reach = std::numeric_limits<double>::infinity ();
+            for (int d = 0; d < 3; ++d)
+              reach = std::min ({reach, q[d] - low[d], high[d] - q[d]});
+            if (best.full () && double (best.worst ()) <= reach * reach * (1.0 - kSlack))
+              mean_distances[v] = best.write (indices + std::size_t (v) * kk);
+            else
+              unsettled[v] = 1;
+          }
+        }
+      },
+      64);
+
+  std::vector<VertexIndex> rest;
+  for (std::size_t v = 0; v < n; ++v)
+    if (unsettled[v])
+      rest.push_back (static_cast<VertexIndex> (v));
+  if (rest.empty ())
+    return;
+  const KdTree tree (points);
+  parallelFor (
+      rest.size (), num_threads,
+      [&] (std::size_t begin, std::size_t end) {
+        std::vector<VertexIndex> idx (kk), scratch_idx;
+        std::vector<float> d2 (kk), scratch_d2;
+        std::vector<std::pair<VertexIndex, float>> tied;
+        NearestK best (kk);
+        for (std::size_t r = begin; r < end; ++r)
+        {
+          const VertexIndex v = rest[r];
+          tree.nearestOthers (v, k, idx.data (), d2.data (), scratch_idx, scratch_d2);
+          // The tree keeps any of the points at exactly the k-th distance: take every
+          // point up to it, and the lowest indices among the ties.
+          tied.clear ();
+          tree.withinSquared (points.row (v).data (),
+                              std::nextafter (d2[kk - 1], std::numeric_limits<float>::infinity ()), tied);
+          best.clear ();
+          for (const auto &hit : tied)
+            if (hit.first != v)
+              best.offer (hit.second, hit.first);
+          mean_distances[v] = best.write (indices + std::size_t (v) * kk);
+        }
+      },
+      256);
 }
 
 } // namespace detail

@@ -4,11 +4,14 @@
  */
 #pragma once
 
-/* Private to the core: exact nearest-neighbour queries through nanoflann.
- * nanoflann was measured against PCL's KdTreeFLANN on the same Morton-ordered
- * points and threads and kept as the faster (see bench/bench_graph.cpp). */
+/* Private to the core: exact nearest-neighbour queries, through nanoflann one query at
+ * a time (nanoflann was measured against PCL's KdTreeFLANN on the same Morton-ordered
+ * points and threads and kept as the faster), and every point's neighbours at once on
+ * the cells of the Morton curve (allNearestOthers, faster still: bench/bench_graph.cpp). */
 
 #include <pcl_graph_denoise/core/graph.h>
+
+#include "spatial_order.h"
 
 #include <memory>
 #include <utility>
@@ -40,6 +43,13 @@ public:
   std::size_t
   nearest (const float *query, int k, VertexIndex *indices, float *squared_distances) const;
 
+  /** Every point p with squared distance |p - query|^2 < squared_radius (as the search
+   *  computes it), appended to `found` as (index, squared distance) in no particular
+   *  order. */
+  void
+  withinSquared (const float *query, float squared_radius,
+                 std::vector<std::pair<VertexIndex, float>> &found) const;
+
   /** Every other point closer than `radius` to point `self`, appended
    *  to `neighbors` in no particular order. */
   void
@@ -50,6 +60,22 @@ private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/** The k nearest other points of every point (k < number of points), by (squared
+ *  distance in single precision, index), so that ties go to the lower index: row v of
+ *  `indices` (n x k, row-major) for point v, nearest first, and the mean of their
+ *  distances in `mean_distances[v]`. `points` are in the order of `sorted` (row v has
+ *  code sorted.codes[v]).
+ *
+ *  Each point is compared with the points of the 27 cells around its own at one level
+ *  of the curve's octree, nearest cells first while they can still hold one of its k
+ *  nearest (the level: the finest at which half the points lie in cells of at least
+ *  max(4, k) points). Points whose k-th neighbour may lie beyond those cells, and
+ *  points in crowded cells (many copies, or a few far outliers stretching the grid)
+ *  are searched in a k-d tree instead. Does not depend on the number of threads. */
+void
+allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, int num_threads,
+                  VertexIndex *indices, double *mean_distances);
 
 } // namespace detail
 } // namespace core

@@ -4,6 +4,7 @@
  */
 #include "spatial_order.h"
 
+#include "huge_pages.h"
 #include "parallel.h"
 
 #include <algorithm>
@@ -28,15 +29,46 @@ spreadBits (std::uint64_t v)
   return v;
 }
 
+/** The inverse of spreadBits: every third bit of v, from bit 0, packed. */
+std::uint64_t
+compactBits (std::uint64_t v)
+{
+  v &= 0x1249249249249249ULL;
+  v = (v | (v >> 2)) & 0x10c30c30c30c30c3ULL;
+  v = (v | (v >> 4)) & 0x100f00f00f00f00fULL;
+  v = (v | (v >> 8)) & 0x1f0000ff0000ffULL;
+  v = (v | (v >> 16)) & 0x1f00000000ffffULL;
+  v = (v | (v >> 32)) & 0x1fffffULL;
+  return v;
+}
+
 } // namespace
+
+std::uint64_t
+interleave (std::uint64_t x, std::uint64_t y, std::uint64_t z)
+{
+  return spreadBits (x) | (spreadBits (y) << 1) | (spreadBits (z) << 2);
+}
+
+std::uint64_t
+deinterleave (std::uint64_t code, int axis)
+{
+  return compactBits (code >> axis);
+}
 
 std::vector<VertexIndex>
 mortonOrder (const PointMatrix &points, int num_threads)
 {
+  return mortonSort (points, num_threads).order;
+}
+
+MortonSort
+mortonSort (const PointMatrix &points, int num_threads)
+{
   const auto n = static_cast<std::size_t> (points.rows ());
-  std::vector<VertexIndex> order (n);
+  MortonSort sorted;
   if (n == 0)
-    return order;
+    return sorted;
 
   const Eigen::Vector3f lo = points.colwise ().minCoeff ();
   const Eigen::Vector3f hi = points.colwise ().maxCoeff ();
@@ -50,18 +82,21 @@ mortonOrder (const PointMatrix &points, int num_threads)
   const int axis_bits = std::min (21, (64 - index_bits) / 3);
   const double cells = double ((std::uint64_t (1) << axis_bits) - 1);
   const double scale = extent > 0.0 ? cells / extent : 0.0;
+  sorted.grid.lo = lo.cast<double> ();
+  sorted.grid.scale = scale;
+  sorted.grid.axis_bits = axis_bits;
 
-  std::vector<std::uint64_t> keys (n), buffer (n);
+  std::vector<std::uint64_t> keys, buffer;
+  resizeOnHugePages (keys, n);
+  resizeOnHugePages (buffer, n);
   parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {
-      std::uint64_t code = 0;
+      std::uint64_t cell[3];
       for (int d = 0; d < 3; ++d)
-      {
-        const double cell = std::min (cells, (double (points (i, d)) - lo (d)) * scale);
-        code |= spreadBits (static_cast<std::uint64_t> (cell)) << d;
-      }
-      keys[i] = (code << index_bits) | i;
+        cell[d] = static_cast<std::uint64_t> (
+            std::min (cells, (double (points (i, d)) - double (lo (d))) * scale));
+      keys[i] = (interleave (cell[0], cell[1], cell[2]) << index_bits) | i;
     }
   });
   // Stable LSD radix sort on the code bits, 11 bits a pass.
@@ -83,15 +118,21 @@ mortonOrder (const PointMatrix &points, int num_threads)
     keys.swap (buffer);
   }
   const std::uint64_t index_mask = (std::uint64_t (1) << index_bits) - 1;
+  resizeOnHugePages (sorted.order, n);
+  resizeOnHugePages (sorted.codes, n);
   for (std::size_t v = 0; v < n; ++v)
-    order[v] = static_cast<VertexIndex> (keys[v] & index_mask);
-  return order;
+  {
+    sorted.order[v] = static_cast<VertexIndex> (keys[v] & index_mask);
+    sorted.codes[v] = keys[v] >> index_bits;
+  }
+  return sorted;
 }
 
 PointMatrix
 reorderPoints (const PointMatrix &points, const std::vector<VertexIndex> &order)
 {
   PointMatrix out (static_cast<Eigen::Index> (order.size ()), 3);
+  adviseHugePages (out.data (), order.size () * 3 * sizeof (float));
   for (std::size_t v = 0; v < order.size (); ++v)
     out.row (v) = points.row (order[v]);
   return out;
