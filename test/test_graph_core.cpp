@@ -192,8 +192,8 @@ TEST (KnnGraph, MatchesBruteForceWithOutliersFarPointsAndUnevenDensity)
   PointMatrix outliers (n, 3), far (n, 3), uneven (n, 3), line (n, 3), plane (n, 3);
   for (int i = 0; i < n; ++i)
   {
-    outliers.row (i) = (i % 20 == 0 ? Eigen::Vector3f (1.2f * u (rng), 1.2f * u (rng), 1.2f * u (rng))
-                                    : onSphere ()).transpose ();
+    const Eigen::Vector3f box (1.2f * u (rng), 1.2f * u (rng), 1.2f * u (rng));
+    outliers.row (i) = (i % 20 == 0 ? box : onSphere ()).transpose ();
     far.row (i) = onSphere ().transpose ();
     const float radius = std::pow (10.0f, 6.0f * u (rng));
     uneven.row (i) = (radius * onSphere ()).transpose ();
@@ -209,8 +209,8 @@ TEST (KnnGraph, MatchesBruteForceWithOutliersFarPointsAndUnevenDensity)
   lattice.row (0) << 1e6f, 0.0f, 0.0f;  // and one far point: it goes to the tree
   far.row (0) << 1e6f, 1e6f, -1e6f;
   far.row (1) << -1e6f, 3.0f, 2.0f;
-  clouds = {{"outliers", outliers}, {"far points", far}, {"uneven density", uneven}, {"line", line}, {"plane", plane},
-            {"lattice", lattice}, {"copies", copies}};
+  clouds = {{"outliers", outliers}, {"far points", far}, {"uneven density", uneven},
+            {"line", line}, {"plane", plane}, {"lattice", lattice}, {"copies", copies}};
   for (const int k : {1, 10, 25})
     for (const auto &cloud : clouds)
     {
@@ -221,7 +221,8 @@ TEST (KnnGraph, MatchesBruteForceWithOutliersFarPointsAndUnevenDensity)
       std::set<std::pair<int, int>> got;
       for (const auto &e : edgesInCallerOrder (graph))
         got.insert (e.first);
-      EXPECT_EQ (got, bruteKnnEdgesFloat (cloud.second, k, graph.order)) << cloud.first << ", k = " << k;
+      EXPECT_EQ (got, bruteKnnEdgesFloat (cloud.second, k, graph.order))
+          << cloud.first << ", k = " << k;
       params.num_threads = 3;
       expectSameGraph (graph, buildKnnGraph (cloud.second, params));
     }

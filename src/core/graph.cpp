@@ -94,18 +94,24 @@ squaredDistance (const PointMatrix &p, VertexIndex i, VertexIndex j)
 }
 
 /** Union of a directed graph and its transpose (edge if i->j or j->i), weighted by
- *  the Gaussian of the edge length. The rows of `directed` hold no vertex twice. Rows
- *  come out sorted, without duplicates. */
+ *  the Gaussian of the edge length. The rows of `directed` hold no vertex twice; they
+ *  are sorted here. Rows come out sorted, without duplicates. */
 void
 symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, int num_threads,
             PointGraph &graph)
 {
   const std::size_t n = static_cast<std::size_t> (points.rows ());
+  detail::parallelFor (
+      n, num_threads,
+      [&] (std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i)
+          std::sort (directed.idx.begin () + directed.ptr[i],
+                     directed.idx.begin () + directed.ptr[i + 1]);
+      },
+      kBlock);
   const auto has = [&] (std::size_t row, VertexIndex j) {
-    bool found = false;
-    for (std::uint64_t e = directed.ptr[row]; e < directed.ptr[row + 1]; ++e)
-      found |= directed.idx[e] == j;
-    return found;
+    return std::binary_search (directed.idx.begin () + directed.ptr[row],
+                               directed.idx.begin () + directed.ptr[row + 1], j);
   };
 
   // Most k-NN links are mutual: only the others add an entry to the row they point
@@ -143,14 +149,17 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
       [&] (std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i)
         {
-          std::copy (directed.idx.begin () + directed.ptr[i], directed.idx.begin () + directed.ptr[i + 1],
-                     graph.col.begin () + graph.row_ptr[i]);
+          std::copy (directed.idx.begin () + directed.ptr[i],
+                     directed.idx.begin () + directed.ptr[i + 1], graph.col.begin () + graph.row_ptr[i]);
           for (std::uint64_t e = directed.ptr[i]; e < directed.ptr[i + 1]; ++e)
           {
             const VertexIndex j = directed.idx[e];
             if (!has (j, static_cast<VertexIndex> (i)))
-              graph.col[graph.row_ptr[j] + (directed.ptr[j + 1] - directed.ptr[j]) +
-                        extra[j].fetch_add (1, std::memory_order_relaxed)] = static_cast<VertexIndex> (i);
+            {
+              const std::uint64_t at = graph.row_ptr[j] + (directed.ptr[j + 1] - directed.ptr[j]) +
+                                       extra[j].fetch_add (1, std::memory_order_relaxed);
+              graph.col[at] = static_cast<VertexIndex> (i);
+            }
           }
         }
       },
@@ -307,7 +316,8 @@ buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params)
     directed.ptr[i] = static_cast<std::uint64_t> (i) * k;
   detail::resizeOnHugePages (directed.idx, n * static_cast<std::size_t> (k));
   std::vector<double> mean (n);
-  detail::allNearestOthers (ordered, sorted, k, params.num_threads, directed.idx.data (), mean.data ());
+  detail::allNearestOthers (ordered, sorted, k, params.num_threads, directed.idx.data (),
+                            mean.data ());
   std::vector<std::uint64_t> ().swap (sorted.codes);
   graph.spacing = std::accumulate (mean.begin (), mean.end (), 0.0) / double (n);
   graph.sigma = params.sigma > 0.0 ? params.sigma : graph.spacing / std::sqrt (2.0);

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -42,6 +43,137 @@ struct MatrixDataset
 using Tree = nanoflann::KDTreeSingleIndexAdaptor<
     nanoflann::L2_Simple_Adaptor<float, MatrixDataset, float, VertexIndex>, MatrixDataset, 3,
     VertexIndex>;
+
+/** Relative slack of every comparison of a single-precision squared distance with a
+ *  bound computed otherwise (a cell's distance in double precision, or nanoflann's
+ *  running bound in single precision, which can come out a few ulps high): far larger
+ *  than their relative rounding. */
+constexpr double kSlack = 1e-5;
+
+/** Absolute slack of the same comparisons: a squared distance below the smallest normal
+ *  float may have underflowed to a subnormal or to 0. */
+constexpr double kTinySquared = 4.0 * double (FLT_MIN);
+
+/** Whether a point at squared distance `bound2` or more (in exact arithmetic) may have
+ *  a single-precision squared distance at or below `worst`. */
+inline bool
+mayReach (double bound2, float worst)
+{
+  return bound2 <= double (worst) * (1.0 + kSlack) + kTinySquared;
+}
+
+/** The k nearest candidates offered so far, by (squared distance, index), ascending:
+ *  each packed in 64 bits, the distance's bits above the index (a non-negative float's
+ *  bits order as the float does), so that comparing two is one integer comparison.
+ *  Works on k keys the caller holds. */
+class NearestK
+{
+public:
+  explicit NearestK (std::vector<std::uint64_t> &keys) : key_ (keys) {}
+
+  void
+  clear () { std::fill (key_.begin (), key_.end (), kNone); }
+
+  /** The k-th squared distance so far, infinite while fewer than k were offered. */
+  float
+  worst () const
+  {
+    return full () ? distance (key_.back ()) : std::numeric_limits<float>::infinity ();
+  }
+
+  bool
+  full () const { return key_.back () != kNone; }
+
+  static std::uint64_t
+  key (float d2, VertexIndex id)
+  {
+    std::uint32_t bits;
+    std::memcpy (&bits, &d2, sizeof bits);
+    return (std::uint64_t (bits) << 32) | id;
+  }
+
+  /** The k keys from `keys` (the k smallest of a list, in any order). */
+  void
+  take (const std::uint64_t *keys)
+  {
+    std::copy (keys, keys + key_.size (), key_.begin ());
+    std::sort (key_.begin (), key_.end ());
+  }
+
+  void
+  offer (float d2, VertexIndex id)
+  {
+    const std::uint64_t key = NearestK::key (d2, id);
+    if (key >= key_.back ())
+      return;
+    std::size_t p = key_.size () - 1;
+    for (; p > 0 && key_[p - 1] > key; --p)
+      key_[p] = key_[p - 1];
+    key_[p] = key;
+  }
+
+  /** Writes the indices (and the squared distances when asked); returns the mean
+   *  distance. Needs full(). */
+  double
+  write (VertexIndex *indices, float *squared_distances = nullptr) const
+  {
+    double sum = 0.0;
+    for (std::size_t m = 0; m < key_.size (); ++m)
+    {
+      indices[m] = static_cast<VertexIndex> (key_[m]);
+      if (squared_distances)
+        squared_distances[m] = distance (key_[m]);
+      sum += std::sqrt (double (distance (key_[m])));
+    }
+    return sum / double (key_.size ());
+  }
+
+private:
+  static constexpr std::uint64_t kNone = ~std::uint64_t (0);
+
+  static float
+  distance (std::uint64_t key)
+  {
+    const auto bits = static_cast<std::uint32_t> (key >> 32);
+    float d2;
+    std::memcpy (&d2, &bits, sizeof d2);
+    return d2;
+  }
+
+  std::vector<std::uint64_t> &key_;
+};
+
+/** A nanoflann result set that ranks by (squared distance, index) itself and admits
+ *  everything within the slack of its k-th: nanoflann's own k-NN keeps any one of the
+ *  points tied at the k-th distance, and its pruning bound can drop a point a few ulps
+ *  nearer. */
+class ExactNearest
+{
+public:
+  ExactNearest (NearestK &best, VertexIndex self) : best_ (best), self_ (self) {}
+
+  bool
+  full () const { return best_.full (); }
+
+  bool
+  addPoint (float d2, VertexIndex id)
+  {
+    if (id != self_)
+      best_.offer (d2, id);
+    return true;
+  }
+
+  float
+  worstDist () const
+  {
+    return best_.full () ? float (double (best_.worst ()) * (1.0 + kSlack) + kTinySquared)
+                         : std::numeric_limits<float>::max ();
+  }
+
+private:
+  NearestK &best_;
+  VertexIndex self_;
+};
 
 } // namespace
 
@@ -96,15 +228,6 @@ KdTree::nearest (const float *query, int k, VertexIndex *indices, float *squared
 }
 
 void
-KdTree::withinSquared (const float *query, float squared_radius,
-                       std::vector<std::pair<VertexIndex, float>> &found) const
-{
-  std::vector<std::pair<VertexIndex, float>> hits;
-  impl_->tree.radiusSearch (query, squared_radius, hits, nanoflann::SearchParams (32, 0.0f, false));
-  found.insert (found.end (), hits.begin (), hits.end ());
-}
-
-void
 KdTree::othersWithin (VertexIndex self, float radius, std::vector<VertexIndex> &neighbors,
                       std::vector<std::pair<VertexIndex, float>> &scratch) const
 {
@@ -118,92 +241,24 @@ KdTree::othersWithin (VertexIndex self, float radius, std::vector<VertexIndex> &
       neighbors.push_back (hit.first);
 }
 
+void
+KdTree::nearestOthersExact (VertexIndex self, int k, VertexIndex *indices,
+                            float *squared_distances, std::vector<std::uint64_t> &scratch) const
+{
+  scratch.resize (static_cast<std::size_t> (k));
+  NearestK best (scratch);
+  best.clear ();
+  ExactNearest result (best, self);
+  impl_->tree.findNeighbors (result, impl_->data.points.row (self).data (),
+                             nanoflann::SearchParams (32, 0.0f, false));
+  best.write (indices, squared_distances);
+}
 
 namespace {
 
-/** The k nearest candidates offered so far, by (squared distance, index), ascending:
- *  each packed in 64 bits, the distance's bits above the index (a non-negative float's
- *  bits order as the float does), so that comparing two is one integer comparison. */
-class NearestK
-{
-public:
-  explicit NearestK (std::size_t k) : key_ (k) {}
-
-  void
-  clear () { std::fill (key_.begin (), key_.end (), kNone); }
-
-  /** The k-th squared distance so far, infinite while fewer than k were offered. */
-  float
-  worst () const
-  {
-    return key_.back () == kNone ? std::numeric_limits<float>::infinity () : distance (key_.back ());
-  }
-
-  bool
-  full () const { return key_.back () != kNone; }
-
-  static std::uint64_t
-  key (float d2, VertexIndex id)
-  {
-    std::uint32_t bits;
-    std::memcpy (&bits, &d2, sizeof bits);
-    return (std::uint64_t (bits) << 32) | id;
-  }
-
-  /** The k keys from `keys` (the k smallest of a list, in any order). */
-  void
-  take (const std::uint64_t *keys)
-  {
-    std::copy (keys, keys + key_.size (), key_.begin ());
-    std::sort (key_.begin (), key_.end ());
-  }
-
-  void
-  offer (float d2, VertexIndex id)
-  {
-    const std::uint64_t key = NearestK::key (d2, id);
-    if (key >= key_.back ())
-      return;
-    std::size_t p = key_.size () - 1;
-    for (; p > 0 && key_[p - 1] > key; --p)
-      key_[p] = key_[p - 1];
-    key_[p] = key;
-  }
-
-  /** Writes the indices; returns the mean distance. */
-  double
-  write (VertexIndex *indices) const
-  {
-    double sum = 0.0;
-    for (std::size_t m = 0; m < key_.size (); ++m)
-    {
-      indices[m] = static_cast<VertexIndex> (key_[m]);
-      sum += std::sqrt (double (distance (key_[m])));
-    }
-    return sum / double (key_.size ());
-  }
-
-private:
-  static constexpr std::uint64_t kNone = ~std::uint64_t (0);
-
-  static float
-  distance (std::uint64_t key)
-  {
-    const auto bits = static_cast<std::uint32_t> (key >> 32);
-    float d2;
-    std::memcpy (&d2, &bits, sizeof d2);
-    return d2;
-  }
-
-  std::vector<std::uint64_t> key_;
-};
-
-/** The guess of a point's k-th squared distance: the previous point's times this. */
+/** The guess of a point's k-th squared distance: the previous point's of its cell times
+ *  this. */
 constexpr float kGuessWidening = 1.5f;
-
-/** Relative slack of the comparisons between single-precision squared distances and
- *  the cells' faces in double precision: far larger than the rounding of either. */
-constexpr double kSlack = 1e-5;
 
 /** The grid's cells: the finest at which half the points lie in cells of at least
  *  max(kMinOccupancy, k) points. */
@@ -250,7 +305,10 @@ private:
   static constexpr std::uint64_t kEmpty = ~std::uint64_t (0);  // no code has 64 bits set
 
   std::size_t
-  slot (std::uint64_t key) const { return std::size_t ((key * 0x9E3779B97F4A7C15ULL) >> 32) & mask_; }
+  slot (std::uint64_t key) const
+  {
+    return std::size_t ((key * 0x9E3779B97F4A7C15ULL) >> 32) & mask_;
+  }
 
   std::size_t mask_ = 0;
   std::vector<std::uint64_t> key_;
@@ -285,7 +343,7 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
   // least `occupancy` points (the median point's cell: outliers in cells of their own
   // do not make it coarser).
   const std::size_t occupancy = std::max<std::size_t> (kMinOccupancy, kk);
-  const auto crowded = [&] (int level) {  // the points in cells of `occupancy` or more
+  const auto inFullCells = [&] (int level) {  // the points in cells of `occupancy` or more
     std::size_t count = 0, run = 0;
     for (std::size_t v = 0; v < n; ++v)
     {
@@ -302,7 +360,7 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
   for (int coarse = 1, fine = bits; coarse <= fine;)
   {
     const int middle = (coarse + fine) / 2;
-    if (2 * crowded (middle) >= n)
+    if (2 * inFullCells (middle) >= n)
       level = middle, coarse = middle + 1;
     else
       fine = middle - 1;
@@ -320,10 +378,19 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
   std::vector<std::uint8_t> ().swap (split);
   const CellTable table (keys);
   const auto side = std::int64_t (1) << level;  // cells per axis
-  const double width = grid.scale > 0.0 ? double (std::uint64_t (1) << (bits - level)) / grid.scale
-                                        : std::numeric_limits<double>::infinity ();
-  const std::size_t crowd = kCrowdedCell * occupancy;
   const auto size = [&] (std::size_t c) { return std::size_t (start[c + 1] - start[c]); };
+  const std::size_t crowded = kCrowdedCell * occupancy;
+  // Every point is in a cell of its own when the points coincide (no extent): nothing
+  // to compare with faces then, and every cell is one position.
+  const bool flat = !(grid.scale > 0.0);
+  const double width = flat ? 0.0 : double (std::uint64_t (1) << (bits - level)) / grid.scale;
+  // How far a point may lie outside its cell's faces as computed here (lo + m width, in
+  // double precision): the codes come from (p - lo) scale, rounded otherwise.
+  double magnitude = 0.0;
+  for (int d = 0; d < 3; ++d)
+    magnitude = std::max ({magnitude, std::abs (grid.lo (d)),
+                           std::abs (grid.lo (d) + double (side) * width)});
+  const double face_error = 16.0 * DBL_EPSILON * magnitude;
   // The 26 neighbouring cells, nearest first: faces, edges, corners.
   std::vector<std::array<int, 3>> around;
   for (int dz = -1; dz <= 1; ++dz)
@@ -337,26 +404,27 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
   });
 
   // The grid settles most points; the others (in crowded cells, or whose k-th neighbour
-  // may lie beyond the 27 cells) are searched in a k-d tree afterwards.
+  // may lie beyond the 27 cells) are searched in the k-d tree afterwards.
   std::vector<std::uint8_t> unsettled (n, 0);
   parallelFor (
       keys.size (), num_threads,
       [&] (std::size_t first_cell, std::size_t last_cell) {
-        std::vector<float> cx, cy, cz, d2;
-        std::vector<VertexIndex> cid;
         struct Neighbour
         {
           std::size_t begin, end;  // its points among the candidates
           double low[3], high[3];  // its faces
         };
         std::vector<Neighbour> cells;
-        NearestK best (kk);
-        std::vector<std::uint64_t> within;
-        float guess = std::numeric_limits<float>::infinity ();
+        std::vector<float> cx, cy, cz, d2;  // the candidates, cell by cell
+        std::vector<VertexIndex> cid;
+        std::vector<std::uint64_t> within, nearest (kk);
+        NearestK best (nearest);
         for (std::size_t c = first_cell; c < last_cell; ++c)
         {
-          const auto defer = [&] () { std::fill (unsettled.begin () + start[c], unsettled.begin () + start[c + 1], 1); };
-          if (size (c) > crowd)
+          const auto defer = [&] () {
+            std::fill (unsettled.begin () + start[c], unsettled.begin () + start[c + 1], 1);
+          };
+          if (flat || size (c) > crowded)
           {
             defer ();
             continue;
@@ -392,14 +460,16 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
           gather (c, cell);
           for (const auto &offset : around)
           {
-            const std::int64_t at[3] = {cell[0] + offset[0], cell[1] + offset[1], cell[2] + offset[2]};
-            if (at[0] < 0 || at[1] < 0 || at[2] < 0 || at[0] >= side || at[1] >= side || at[2] >= side)
+            const std::int64_t at[3] = {cell[0] + offset[0], cell[1] + offset[1],
+                                        cell[2] + offset[2]};
+            if (at[0] < 0 || at[1] < 0 || at[2] < 0 || at[0] >= side || at[1] >= side ||
+                at[2] >= side)
               continue;
-            const std::int64_t other = table.find (interleave (std::uint64_t (at[0]), std::uint64_t (at[1]),
-                                                               std::uint64_t (at[2])));
+            const std::int64_t other = table.find (
+                interleave (std::uint64_t (at[0]), std::uint64_t (at[1]), std::uint64_t (at[2])));
             if (other < 0)
               continue;
-            if (size (std::size_t (other)) > crowd)
+            if (size (std::size_t (other)) > crowded)
             {
               crowded_around = true;
               break;
@@ -422,19 +492,23 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
                                           : grid.lo (d) + double (cell[d] + 2) * width;
           }
           d2.resize (cid.size ());
-          within.resize (cid.size () + 1);
+          within.resize (cid.size ());
+          // The guess of the k-th distance: the previous point's of this cell.
+          float guess = std::numeric_limits<float>::infinity ();
           for (VertexIndex v = start[c]; v < start[c + 1]; ++v)
           {
             const float x = points (v, 0), y = points (v, 1), z = points (v, 2);
             const double q[3] = {x, y, z};
             const std::size_t self = v - start[c];
+            // The squared distance from the point to a cell, less the faces' error.
             const auto gap2 = [&] (const Neighbour &cell_of) {
               double sum = 0.0;
               for (int d = 0; d < 3; ++d)
               {
                 const double gap = q[d] < cell_of.low[d] ? cell_of.low[d] - q[d]
                                    : q[d] > cell_of.high[d] ? q[d] - cell_of.high[d] : 0.0;
-                sum += gap * gap;
+                const double shrunk = std::max (0.0, gap - face_error);
+                sum += shrunk * shrunk;
               }
               return sum;
             };
@@ -445,14 +519,13 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
                 d2[j] = ex * ex + ey * ey + ez * ez;
               }
             };
-            // First within a guess of the k-th distance (the previous point's, a little
-            // wider): the candidates within it, if k or more, hold the k nearest.
+            // First within the guess, a little wider: the candidates within it, if k
+            // or more, hold the k nearest.
             std::size_t found = 0;
             if (guess < std::numeric_limits<float>::infinity ())
-            {
               for (std::size_t b = 0; b < cells.size (); ++b)
               {
-                if (b > 0 && gap2 (cells[b]) > double (guess) * (1.0 + kSlack))
+                if (b > 0 && !mayReach (gap2 (cells[b]), guess))
                   continue;
                 distances (cells[b]);
                 for (std::size_t j = cells[b].begin; j < cells[b].end; ++j)
@@ -461,21 +534,21 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
                   found += (d2[j] <= guess) & (j != self);
                 }
               }
-            }
             if (found >= kk)
             {
-              std::nth_element (within.begin (), within.begin () + (kk - 1), within.begin () + found);
+              std::nth_element (within.begin (), within.begin () + (kk - 1),
+                                within.begin () + found);
               best.take (within.data ());
             }
             else
             {
-              // Else the own cell, then the neighbours that can hold anything nearer
+              // Else the own cell, then the neighbours that may hold anything nearer
               // than the k-th so far.
               best.clear ();
               for (std::size_t b = 0; b < cells.size (); ++b)
               {
                 float worst = best.worst ();
-                if (b > 0 && gap2 (cells[b]) > double (worst) * (1.0 + kSlack))
+                if (b > 0 && !mayReach (gap2 (cells[b]), worst))
                   continue;
                 distances (cells[b]);
                 for (std::size_t j = cells[b].begin; j < cells[b].end; ++j)
@@ -491,7 +564,8 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
             double reach = std::numeric_limits<double>::infinity ();
             for (int d = 0; d < 3; ++d)
               reach = std::min ({reach, q[d] - low[d], high[d] - q[d]});
-            if (best.full () && double (best.worst ()) <= reach * reach * (1.0 - kSlack))
+            reach = std::max (0.0, reach - face_error);
+            if (best.full () && !mayReach (reach * reach, best.worst ()))
               mean_distances[v] = best.write (indices + std::size_t (v) * kk);
             else
               unsettled[v] = 1;
@@ -510,24 +584,16 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
   parallelFor (
       rest.size (), num_threads,
       [&] (std::size_t begin, std::size_t end) {
-        std::vector<VertexIndex> idx (kk), scratch_idx;
-        std::vector<float> d2 (kk), scratch_d2;
-        std::vector<std::pair<VertexIndex, float>> tied;
-        NearestK best (kk);
+        std::vector<std::uint64_t> scratch;
+        std::vector<float> d2 (kk);
         for (std::size_t r = begin; r < end; ++r)
         {
           const VertexIndex v = rest[r];
-          tree.nearestOthers (v, k, idx.data (), d2.data (), scratch_idx, scratch_d2);
-          // The tree keeps any of the points at exactly the k-th distance: take every
-          // point up to it, and the lowest indices among the ties.
-          tied.clear ();
-          tree.withinSquared (points.row (v).data (),
-                              std::nextafter (d2[kk - 1], std::numeric_limits<float>::infinity ()), tied);
-          best.clear ();
-          for (const auto &hit : tied)
-            if (hit.first != v)
-              best.offer (hit.second, hit.first);
-          mean_distances[v] = best.write (indices + std::size_t (v) * kk);
+          tree.nearestOthersExact (v, k, indices + std::size_t (v) * kk, d2.data (), scratch);
+          double sum = 0.0;
+          for (std::size_t m = 0; m < kk; ++m)
+            sum += std::sqrt (double (d2[m]));
+          mean_distances[v] = sum / double (kk);
         }
       },
       256);

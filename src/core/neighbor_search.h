@@ -43,12 +43,12 @@ public:
   std::size_t
   nearest (const float *query, int k, VertexIndex *indices, float *squared_distances) const;
 
-  /** Every point p with squared distance |p - query|^2 < squared_radius (as the search
-   *  computes it), appended to `found` as (index, squared distance) in no particular
-   *  order. */
+  /** The k nearest other points of point `self` (k < number of points) by (squared
+   *  distance, index), nearest first, exactly (nearestOthers keeps any of the points tied
+   *  at the k-th distance). `scratch`: any vector, reused between calls. */
   void
-  withinSquared (const float *query, float squared_radius,
-                 std::vector<std::pair<VertexIndex, float>> &found) const;
+  nearestOthersExact (VertexIndex self, int k, VertexIndex *indices, float *squared_distances,
+                      std::vector<std::uint64_t> &scratch) const;
 
   /** Every other point closer than `radius` to point `self`, appended
    *  to `neighbors` in no particular order. */

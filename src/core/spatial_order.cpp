@@ -59,11 +59,11 @@ deinterleave (std::uint64_t code, int axis)
 std::vector<VertexIndex>
 mortonOrder (const PointMatrix &points, int num_threads)
 {
-  return mortonSort (points, num_threads).order;
+  return mortonSort (points, num_threads, false).order;
 }
 
 MortonSort
-mortonSort (const PointMatrix &points, int num_threads)
+mortonSort (const PointMatrix &points, int num_threads, bool with_codes)
 {
   const auto n = static_cast<std::size_t> (points.rows ());
   MortonSort sorted;
@@ -119,11 +119,13 @@ mortonSort (const PointMatrix &points, int num_threads)
   }
   const std::uint64_t index_mask = (std::uint64_t (1) << index_bits) - 1;
   resizeOnHugePages (sorted.order, n);
-  resizeOnHugePages (sorted.codes, n);
   for (std::size_t v = 0; v < n; ++v)
-  {
     sorted.order[v] = static_cast<VertexIndex> (keys[v] & index_mask);
-    sorted.codes[v] = keys[v] >> index_bits;
+  if (with_codes)
+  {
+    resizeOnHugePages (sorted.codes, n);
+    for (std::size_t v = 0; v < n; ++v)
+      sorted.codes[v] = keys[v] >> index_bits;
   }
   return sorted;
 }

@@ -37,9 +37,9 @@ struct MortonSort
 
 /** Sorts the points along a Morton curve over their bounding box, up to 21 bits per
  *  axis; ties keep the input order. The result does not depend on the number of
- *  threads. */
+ *  threads. Without `with_codes`, the codes are left empty. */
 MortonSort
-mortonSort (const PointMatrix &points, int num_threads);
+mortonSort (const PointMatrix &points, int num_threads, bool with_codes = true);
 
 /** mortonSort's permutation alone. */
 std::vector<VertexIndex>

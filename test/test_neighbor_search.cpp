@@ -1,0 +1,172 @@
+/*
+ * pcl_graph_denoise: graph-signal-processing point cloud denoising for PCL.
+ * SPDX-License-Identifier: BSD-3-Clause
+ *
+ * The private all-points k-NN search of the core (src/core/neighbor_search.h) against
+ * brute force, row by row, on the clouds where its grid and its k-d tree are most
+ * likely to go wrong: the result must be exactly the k nearest by (single-precision
+ * squared distance, vertex), whatever the number of threads. Compiled with
+ * -ffp-contract=off, as the search is, so that both compute the same distances.
+ */
+#include <pcl_graph_denoise/core/graph.h>
+
+#include "neighbor_search.h"
+#include "spatial_order.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace pcl_graph_denoise::core;
+using namespace pcl_graph_denoise::core::detail;
+
+namespace {
+
+/** Every point's k nearest others by (float squared distance, vertex), in the order of
+ *  `sorted`, as rows of k; and each row's mean distance. */
+void
+bruteForce (const PointMatrix &p, int k, std::vector<VertexIndex> &indices, std::vector<double> &mean)
+{
+  const auto n = static_cast<std::size_t> (p.rows ());
+  indices.assign (n * k, 0);
+  mean.assign (n, 0.0);
+  std::vector<std::pair<float, VertexIndex>> all;
+  for (std::size_t v = 0; v < n; ++v)
+  {
+    all.clear ();
+    for (std::size_t w = 0; w < n; ++w)
+      if (w != v)
+      {
+        const float dx = p (v, 0) - p (w, 0), dy = p (v, 1) - p (w, 1), dz = p (v, 2) - p (w, 2);
+        all.emplace_back (dx * dx + dy * dy + dz * dz, static_cast<VertexIndex> (w));
+      }
+    std::partial_sort (all.begin (), all.begin () + k, all.end ());
+    double sum = 0.0;
+    for (int m = 0; m < k; ++m)
+    {
+      indices[v * k + m] = all[m].second;
+      sum += std::sqrt (double (all[m].first));
+    }
+    mean[v] = sum / k;
+  }
+}
+
+/** allNearestOthers on `raw` equals brute force on 1 and 3 threads. */
+void
+expectExact (const PointMatrix &raw, int k, const std::string &what)
+{
+  const MortonSort sorted = mortonSort (raw, 1);
+  const PointMatrix points = reorderPoints (raw, sorted.order);
+  const auto n = static_cast<std::size_t> (points.rows ());
+  std::vector<VertexIndex> want;
+  std::vector<double> want_mean;
+  bruteForce (points, k, want, want_mean);
+  for (const int threads : {1, 3})
+  {
+    std::vector<VertexIndex> got (n * k);
+    std::vector<double> mean (n);
+    allNearestOthers (points, sorted, k, threads, got.data (), mean.data ());
+    std::size_t wrong = 0, first = n;
+    for (std::size_t v = 0; v < n; ++v)
+      if (!std::equal (got.begin () + v * k, got.begin () + (v + 1) * k, want.begin () + v * k) ||
+          mean[v] != want_mean[v])
+      {
+        first = std::min (first, v);
+        ++wrong;
+      }
+    EXPECT_EQ (wrong, 0u) << what << ", k = " << k << ", " << threads << " threads: " << wrong
+                          << " rows differ, the first at vertex " << first;
+  }
+}
+
+} // namespace
+
+TEST (AllNearestOthers, ExactWherePointsLieJustBeyondTheirCellsComputedFaces)
+{
+  // Two anchors a million units out make the grid's faces (lo + m * width, in double
+  // precision) uncertain by about 1e-10, while three points near x = 2.19, a few 1e-7
+  // apart, straddle a face: p sits in the cell beyond it by its code but below the face
+  // as computed. q's nearest is p (a cell skipped as too far, had the faces' error been
+  // ignored), not r. 200 groups of 5 copies fix the grid's level at the finest.
+  PointMatrix p (1005, 3);
+  int row = 0;
+  p.row (row++) << -1e6f, 1.2e6f, 1.2e6f;
+  p.row (row++) << 1010935.75f, 1.2e6f, 1.1e6f;
+  for (int group = 0; group < 200; ++group)
+    for (int copy = 0; copy < 5; ++copy)
+      p.row (row++) << -9e5f + 9000.0f * group, 1e6f + 100.0f * group, 1e6f;
+  p.row (row++) << 2.1874845f, 0.0f, 0.0f;
+  p.row (row++) << 2.1874826f, 1.42779362e-08f, 0.0f;
+  p.row (row++) << 2.18748641f, 0.0f, 0.0f;
+  for (const int k : {1, 2, 6})
+    expectExact (p, k, "faces a million units out");
+}
+
+TEST (AllNearestOthers, ExactWhereSquaredDistancesUnderflow)
+{
+  // In a box 1e-22 wide the squared distances are subnormal floats or 0: a cell whose
+  // distance is 1e-46 may still hold a point at a float distance of 0.
+  std::mt19937 rng (3);
+  std::uniform_real_distribution<float> u (0.0f, 1e-22f);
+  PointMatrix p (1500, 3);
+  for (Eigen::Index i = 0; i < p.rows (); ++i)
+    p.row (i) << u (rng), u (rng), u (rng);
+  for (const int k : {1, 4, 10, 30})
+    expectExact (p, k, "a box 1e-22 wide");
+}
+
+TEST (AllNearestOthers, ExactAmongTiesInTheTree)
+{
+  // Lattices of 1,200 points (many exact ties) with two points 1e7 away: the far points
+  // stretch the grid until the lattice fills crowded cells, so every point goes to the
+  // k-d tree, whose own k-NN keeps any one of the points tied at the k-th distance.
+  for (const unsigned seed : {9u, 49u, 91u})
+  {
+    std::mt19937 rng (seed);
+    std::uniform_real_distribution<float> u (0.0f, 1.0f);
+    PointMatrix p (1200, 3);
+    const float step = 0.1f + 0.9f * u (rng), offset = 100.0f * u (rng);
+    const unsigned side = 4 + rng () % 8;
+    for (Eigen::Index i = 0; i < p.rows (); ++i)
+    {
+      const unsigned a = rng () % side, b = rng () % side, c = rng () % side;
+      p.row (i) << offset + step * a, 0.3f * offset + 1.3f * step * b, 0.7f * step * c;
+      if (rng () % 4 == 0)
+        p (i, rng () % 3) += 0.5f * step * float (rng () % 3);
+    }
+    p.row (0) << 1e7f, 0.0f, 0.0f;
+    p.row (1) << -1e7f, 0.0f, 0.0f;
+    for (const int k : {1, 7, 30})
+      expectExact (p, k, "a lattice with far points, seed " + std::to_string (seed));
+  }
+}
+
+TEST (AllNearestOthers, ExactOnCopiesOutliersAndCoincidentPoints)
+{
+  std::mt19937 rng (5);
+  std::normal_distribution<float> g (0.0f, 1.0f);
+  std::uniform_real_distribution<float> u (-1.2f, 1.2f);
+  // A noisy sphere with outliers, each point three times.
+  PointMatrix sphere (2000, 3);
+  for (Eigen::Index i = 0; i < sphere.rows (); ++i)
+  {
+    const Eigen::Vector3f s = Eigen::Vector3f (g (rng), g (rng), g (rng)).normalized ();
+    const Eigen::Vector3f box (u (rng), u (rng), u (rng));
+    sphere.row (i) = (i % 25 == 0 ? box : Eigen::Vector3f (s + 0.01f * Eigen::Vector3f (g (rng), g (rng), g (rng))))
+                         .transpose ();
+  }
+  PointMatrix copies (6000, 3);
+  copies << sphere, sphere, sphere;
+  for (const int k : {2, 10})
+    expectExact (copies, k, "copies of a sphere with outliers");
+  // Every point at one of two positions, and every point at one position.
+  PointMatrix two (400, 3), one = PointMatrix::Constant (300, 3, 2.5f);
+  for (Eigen::Index i = 0; i < two.rows (); ++i)
+    two.row (i) << float (i % 2), 0.0f, 0.0f;
+  expectExact (two, 10, "two positions");
+  expectExact (one, 10, "one position");
+}
