@@ -557,6 +557,21 @@ and bun090. Time per cloud (section 2's run, idle machine): Tikhonov 0.104 s at 
 0.39 s at 50,000, TV 0.15 and 0.71 s (0.14 and 0.81 s before the preconditioned solver below,
 at a weaker γ).
 
+Tried after the defaults above, not taken yet: each vertex's quadric fitted over its three graph
+rings instead of two where that wider fit agrees with the two-ring one (the two fits' surfaces,
+evaluated under the two-ring points, within √6 × 2σ̂ in root-sum-square: an intersection of
+confidence intervals, as in Katkovnik's LPA-ICI), so that smooth parts average more noise and
+edges, thin parts and detail keep the narrow fit. Alone (x = f, blended) it was within 2% of the
+better of two and three rings everywhere on a noisy sphere (three rings 33% better there) and a
+corrugated sheet (two rings 14% better). On the 48 PU-GAN clouds at 10,000 points, against the
+best peer per cloud (the table's clouds, both runs `evaluate pugan --sizes 10000 --no-risk` on
+the same code but for the support): Tikhonov's defaults 0.871 (39) → 0.875 (37), TV's 0.939
+(34) → **0.854 (36)**; at the best of ¼–4 × γ per cloud Tikhonov 0.813 (41) → 0.773 (39), TV
+0.854 (38) → **0.753 (40)**; 2.2 × the time per cloud (the second fit of every vertex). The derived γ was fitted with two-ring quadrics and is now too
+strong for Tikhonov; the 50,000-point clouds, the calibration set and the million-point cost
+were not run. The lead for the next step: the γ rule refitted with it, then the whole
+evaluation.
+
 On a million points (`build/bench/bench_smoothing 1000000`, noisy unit sphere, σ = 1%, the
 noise 2.6 spacings) the blend costs: Tikhonov 0.00247 against 0.00239 with the own quadric, TV
 0.00444 against 0.00389, and 7.5 s against 5.7 s, 15.8 s against 13.3 s (7.2× and 15.0× the graph
