@@ -561,7 +561,9 @@ Tried after the defaults above, not taken yet: each vertex's quadric fitted over
 rings instead of two where that wider fit agrees with the two-ring one (the two fits' surfaces,
 evaluated under the two-ring points, within √6 × 2σ̂ in root-sum-square: an intersection of
 confidence intervals, as in Katkovnik's LPA-ICI), so that smooth parts average more noise and
-edges, thin parts and detail keep the narrow fit. Alone (x = f, blended) it was within 2% of the
+edges, thin parts and detail keep the narrow fit: `core::QuadricSupport::ADAPTIVE` of
+`core::quadricDisplacement`, not yet an option of the filters (it was switched on in them for
+the runs below). Alone (x = f, blended) it was within 2% of the
 better of two and three rings everywhere on a noisy sphere (three rings 33% better there) and a
 corrugated sheet (two rings 14% better). On the 48 PU-GAN clouds at 10,000 points, against the
 best peer per cloud (the table's clouds, both runs `evaluate pugan --sizes 10000 --no-risk` on

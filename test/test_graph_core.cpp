@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <map>
 #include <random>
@@ -1131,6 +1132,72 @@ TEST (Normals, BlendedQuadricsAverageOutTheFitsNoise)
   EXPECT_LT (sine / double (n), 0.15);
 }
 
+TEST (Normals, AdaptiveSupportWidensTheFitsOnlyWhereTheSurfaceIsSmoothAtThatScale)
+{
+  // Two noisy surfaces, each fitted as it is (x = f) with blended quadrics over two rings,
+  // over three, and over the support chosen per vertex. On a unit sphere (it bends over
+  // about 60 spacings) the wider fits average more noise; on a corrugated sheet (a period
+  // of 8 spacings) they cut across the ridges and the narrow fits follow them. The
+  // adaptive support must do as well as the better of the two on each.
+  std::mt19937 rng (75);
+  std::normal_distribution<double> g (0.0, 1.0);
+  std::uniform_real_distribution<double> u (-1.0, 1.0);
+  const Eigen::Index n = 4000;
+  struct Surface
+  {
+    Signal3 noisy;
+    double noise;
+    std::function<double (const Eigen::Vector3d &)> distance;
+  };
+  Surface sphere{Signal3 (n, 3), 0.01, [] (const Eigen::Vector3d &p) { return std::abs (p.norm () - 1.0); }};
+  const double spacing = std::sqrt (4.0 / double (n)), period = 8.0 * spacing, amplitude = spacing;
+  const auto ridge = [=] (double a) { return amplitude * std::sin (2.0 * M_PI * a / period); };
+  Surface sheet{Signal3 (n, 3), 0.1 * spacing, [=] (const Eigen::Vector3d &p) {
+                  // Vertical offset times the cosine of the slope: the distance to first order.
+                  const double slope = amplitude * 2.0 * M_PI / period * std::cos (2.0 * M_PI * p.x () / period);
+                  return std::abs (p.z () - ridge (p.x ())) / std::sqrt (1.0 + slope * slope);
+                }};
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    const Eigen::Vector3d s = Eigen::Vector3d (g (rng), g (rng), g (rng)).normalized ();
+    sphere.noisy.row (i) = (s + sphere.noise * Eigen::Vector3d (g (rng), g (rng), g (rng))).transpose ();
+    const double a = u (rng), b = u (rng);
+    sheet.noisy.row (i) << a, b, ridge (a) + sheet.noise * g (rng);
+  }
+  double error[2][3];
+  for (int which = 0; which < 2; ++which)
+  {
+    const Surface &surface = which == 0 ? sphere : sheet;
+    const PointGraph graph = buildKnnGraph (surface.noisy.cast<float> ());
+    const Signal3 f = inVertexOrder (graph, surface.noisy);
+    int column = 0;
+    for (const auto support : {QuadricSupport::TWO_RINGS, QuadricSupport::THREE_RINGS, QuadricSupport::ADAPTIVE})
+    {
+      const Signal3 out = quadricDisplacement (graph, f, f, surface.noise, 0, QuadricProjection::BLENDED, support);
+      double sum = 0.0;
+      for (Eigen::Index v = 0; v < n; ++v)
+        sum += surface.distance (out.row (v).transpose ());
+      error[which][column++] = sum / double (n);
+    }
+    std::printf ("%s: mean distance, two rings %.3e, three rings %.3e, adaptive %.3e\n",
+                 which == 0 ? "sphere" : "corrugated sheet", error[which][0], error[which][1],
+                 error[which][2]);
+    EXPECT_EQ (quadricDisplacement (graph, f, f, surface.noise, 1, QuadricProjection::BLENDED, QuadricSupport::ADAPTIVE),
+               quadricDisplacement (graph, f, f, surface.noise, 2, QuadricProjection::BLENDED, QuadricSupport::ADAPTIVE));
+  }
+  // The cases are telling: each support loses clearly on one surface.
+  EXPECT_LT (error[0][1], 0.9 * error[0][0]);
+  EXPECT_LT (error[1][0], 0.9 * error[1][1]);
+  // The adaptive support is within 5% of the better one on both.
+  EXPECT_LT (error[0][2], 1.05 * error[0][1]);
+  EXPECT_LT (error[1][2], 1.05 * error[1][0]);
+  // Without a noise level there is no test to widen by: two rings.
+  const PointGraph graph = buildKnnGraph (sphere.noisy.cast<float> ());
+  const Signal3 f = inVertexOrder (graph, sphere.noisy);
+  EXPECT_EQ (quadricDisplacement (graph, f, f, 0.0, 0, QuadricProjection::BLENDED, QuadricSupport::ADAPTIVE),
+             quadricDisplacement (graph, f, f, 0.0, 0, QuadricProjection::BLENDED, QuadricSupport::TWO_RINGS));
+}
+
 TEST (Normals, QuadricWithTooFewPointsKeepsTheEstimate)
 {
   Signal3 f (2, 3), x (2, 3);
@@ -1166,16 +1233,17 @@ TEST (Normals, QuadricIsNotExtrapolatedFromACollapsedPatch)
   // evaluated on the patch only, where it stays within a micrometre of x.
   for (const double level : {noise, 0.0})
     for (const auto projection : {QuadricProjection::OWN_PATCH, QuadricProjection::BLENDED})
-    {
-      const Signal3 out = quadricDisplacement (graph, f, x, level, 0, projection);
-      ASSERT_TRUE (out.allFinite ());
-      double worst = 0.0;
-      for (Eigen::Index v = 0; v < n; ++v)
-        worst = std::max (worst, (out.row (v) - f.row (v)).norm () -
-                                     ((f.row (v) - x.row (v)).norm () + 3.0 * noise));
-      EXPECT_LE (worst, 0.0) << "noise level " << level << ", blended "
-                             << (projection == QuadricProjection::BLENDED);
-    }
+      for (const auto support : {QuadricSupport::TWO_RINGS, QuadricSupport::ADAPTIVE})
+      {
+        const Signal3 out = quadricDisplacement (graph, f, x, level, 0, projection, support);
+        ASSERT_TRUE (out.allFinite ());
+        double worst = 0.0;
+        for (Eigen::Index v = 0; v < n; ++v)
+          worst = std::max (worst, (out.row (v) - f.row (v)).norm () -
+                                       ((f.row (v) - x.row (v)).norm () + 3.0 * noise));
+        EXPECT_LE (worst, 0.0) << "noise level " << level << ", blended "
+                               << (projection == QuadricProjection::BLENDED);
+      }
 }
 
 namespace {

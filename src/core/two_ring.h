@@ -22,8 +22,8 @@ namespace core {
 namespace detail {
 
 /** Collects a vertex's two rings (the vertex, its neighbours and theirs, each once, in
- *  the order first met) with a small open-addressing set that is reused from vertex to
- *  vertex: no sort, no clearing. One per thread. */
+ *  the order first met), and on demand the next ring, with a small open-addressing set
+ *  that is reused from vertex to vertex: no sort, no clearing. One per thread. */
 class TwoRing
 {
 public:
@@ -62,9 +62,40 @@ public:
     }
   }
 
-private:
+  /** Adds the next ring to `ring` as collect left it: the neighbours of every vertex in
+   *  it that are not in it yet, in the order first met (after collect, the three rings). */
   void
-  insert (VertexIndex v, std::vector<VertexIndex> &ring)
+  grow (const PointGraph &graph, std::vector<VertexIndex> &ring)
+  {
+    std::uint64_t bound = 0;
+    for (const VertexIndex j : ring)
+      bound += 1 + (graph.row_ptr[j + 1] - graph.row_ptr[j]);
+    int bits = bits_;
+    while ((std::uint64_t (1) << bits) < 2 * bound)
+      ++bits;
+    if (bits > bits_)  // a larger table: every vertex of the ring again
+    {
+      bits_ = bits;
+      slot_.assign (std::size_t (1) << bits, 0);
+      stamp_.assign (std::size_t (1) << bits, 0);
+      epoch_ = 1;
+      const std::size_t size = ring.size ();
+      for (std::size_t r = 0; r < size; ++r)
+        mark (ring[r]);
+    }
+    const std::size_t size = ring.size ();
+    for (std::size_t r = 0; r < size; ++r)
+    {
+      const VertexIndex j = ring[r];
+      for (std::uint64_t e = graph.row_ptr[j]; e < graph.row_ptr[j + 1]; ++e)
+        insert (graph.col[e], ring);
+    }
+  }
+
+private:
+  /** Puts v in the set; true when it was not there. */
+  bool
+  mark (VertexIndex v)
   {
     const std::size_t mask = (std::size_t (1) << bits_) - 1;
     for (std::size_t h = std::size_t ((std::uint64_t (v) * 0x9E3779B97F4A7C15ull) >> (64 - bits_)) & mask;;
@@ -74,12 +105,18 @@ private:
       {
         stamp_[h] = epoch_;
         slot_[h] = v;
-        ring.push_back (v);
-        return;
+        return true;
       }
       if (slot_[h] == v)
-        return;
+        return false;
     }
+  }
+
+  void
+  insert (VertexIndex v, std::vector<VertexIndex> &ring)
+  {
+    if (mark (v))
+      ring.push_back (v);
   }
 
   int bits_ = 0;

@@ -35,10 +35,26 @@ enum class QuadricProjection
   BLENDED     ///< the weighted mean of the quadrics around it (default of the filters)
 };
 
+/** \brief Over which graph neighbourhood quadricDisplacement fits each vertex's quadric. */
+enum class QuadricSupport
+{
+  TWO_RINGS,    ///< the vertex's two rings
+  THREE_RINGS,  ///< its three rings everywhere (for comparison)
+  /** Also over its three rings, and that wider fit is kept where its surface agrees
+   *  with the two-ring fit's under the two-ring points: root-sum-square distance at most
+   *  2 sqrt(6) noise levels (two standard errors per coefficient of a quadric). A larger
+   *  support averages more noise where the surface is smooth at that scale; the test
+   *  keeps the narrow fit where it bends or ends (an intersection of confidence
+   *  intervals, as in Katkovnik's LPA-ICI). Without a noise level, TWO_RINGS. Not the
+   *  filters' default yet: docs/evaluation.md, section 5. */
+  ADAPTIVE
+};
+
 /** \brief Moves every point of f along a normal onto a local second-order surface
  *  fitted to the estimate x: for vertex i, the points of x over its two graph rings
- *  give a frame (origin x_i, normal = direction of least variance) and a quadric height
- *  field h(u, v) fitted by least squares, robustly: with `noise` > 0, each of four fits
+ *  (or three: `support`) give a frame (origin x_i, normal = direction of least
+ *  variance) and a quadric height field h(u, v) fitted by least squares, robustly:
+ *  with `noise` > 0, each of four fits
  *  weights the points by exp(-r^2 / (2 noise^2)) of their residual r to the previous
  *  one (the first: to the plane through x_i), so that points of
  *  another sheet (the far side of a thin wall, the other face at a sharp edge) stop
@@ -59,7 +75,8 @@ enum class QuadricProjection
 Signal3
 quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x, double noise,
                      int num_threads = 0,
-                     QuadricProjection projection = QuadricProjection::OWN_PATCH);
+                     QuadricProjection projection = QuadricProjection::OWN_PATCH,
+                     QuadricSupport support = QuadricSupport::TWO_RINGS);
 
 /** \brief Parameters of surfaceOffsets. */
 struct SurfaceOffsetParams
