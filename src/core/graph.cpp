@@ -116,7 +116,9 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
 
   // Most k-NN links are mutual: only the others add an entry to the row they point
   // to. Count those per row on all threads (atomic counters), then place them (the
-  // order within a row depends on scheduling: every row is sorted afterwards).
+  // order within a row depends on scheduling: every row is sorted afterwards). Both
+  // passes test mutuality again (a bisection in a row of k): cheaper than keeping a
+  // flag per link, n x k bytes of fresh memory.
   std::vector<std::atomic<std::uint32_t>> extra (n);
   detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
@@ -150,7 +152,8 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
         for (std::size_t i = begin; i < end; ++i)
         {
           std::copy (directed.idx.begin () + directed.ptr[i],
-                     directed.idx.begin () + directed.ptr[i + 1], graph.col.begin () + graph.row_ptr[i]);
+                     directed.idx.begin () + directed.ptr[i + 1],
+                     graph.col.begin () + graph.row_ptr[i]);
           for (std::uint64_t e = directed.ptr[i]; e < directed.ptr[i + 1]; ++e)
           {
             const VertexIndex j = directed.idx[e];
@@ -207,11 +210,19 @@ meanKnnDistances (const detail::KdTree &tree, std::size_t n, int k, int num_thre
   return mean;
 }
 
-/** Reorders the points along the Morton curve and records the order in `graph`. */
+/** Reorders the points along the Morton curve and records the order in `graph`; the
+ *  sorted codes and their grid go to `curve` when asked (its order is left empty). */
 PointMatrix
-orderVertices (const PointMatrix &points, int num_threads, PointGraph &graph)
+orderVertices (const PointMatrix &points, int num_threads, PointGraph &graph,
+               detail::MortonSort *curve = nullptr)
 {
-  graph.order = detail::mortonOrder (points, num_threads);
+  detail::MortonSort sorted = detail::mortonSort (points, num_threads, curve != nullptr);
+  graph.order = std::move (sorted.order);
+  if (curve)
+  {
+    curve->codes = std::move (sorted.codes);
+    curve->grid = sorted.grid;
+  }
   return detail::reorderPoints (points, graph.order);
 }
 
@@ -298,9 +309,8 @@ buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params)
   validatePoints (points);
 
   PointGraph graph;
-  detail::MortonSort sorted = detail::mortonSort (points, params.num_threads);
-  const PointMatrix ordered = detail::reorderPoints (points, sorted.order);
-  graph.order = std::move (sorted.order);
+  detail::MortonSort sorted;
+  const PointMatrix ordered = orderVertices (points, params.num_threads, graph, &sorted);
   const std::size_t n = graph.order.size ();
   graph.row_ptr.assign (n + 1, 0);
   if (n < 2)

@@ -112,17 +112,14 @@ public:
     key_[p] = key;
   }
 
-  /** Writes the indices (and the squared distances when asked); returns the mean
-   *  distance. Needs full(). */
+  /** Writes the indices; returns the mean distance. Needs full(). */
   double
-  write (VertexIndex *indices, float *squared_distances = nullptr) const
+  write (VertexIndex *indices) const
   {
     double sum = 0.0;
     for (std::size_t m = 0; m < key_.size (); ++m)
     {
       indices[m] = static_cast<VertexIndex> (key_[m]);
-      if (squared_distances)
-        squared_distances[m] = distance (key_[m]);
       sum += std::sqrt (double (distance (key_[m])));
     }
     return sum / double (key_.size ());
@@ -241,9 +238,9 @@ KdTree::othersWithin (VertexIndex self, float radius, std::vector<VertexIndex> &
       neighbors.push_back (hit.first);
 }
 
-void
+double
 KdTree::nearestOthersExact (VertexIndex self, int k, VertexIndex *indices,
-                            float *squared_distances, std::vector<std::uint64_t> &scratch) const
+                            std::vector<std::uint64_t> &scratch) const
 {
   scratch.resize (static_cast<std::size_t> (k));
   NearestK best (scratch);
@@ -251,7 +248,7 @@ KdTree::nearestOthersExact (VertexIndex self, int k, VertexIndex *indices,
   ExactNearest result (best, self);
   impl_->tree.findNeighbors (result, impl_->data.points.row (self).data (),
                              nanoflann::SearchParams (32, 0.0f, false));
-  best.write (indices, squared_distances);
+  return best.write (indices);
 }
 
 namespace {
@@ -380,8 +377,8 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
   const auto side = std::int64_t (1) << level;  // cells per axis
   const auto size = [&] (std::size_t c) { return std::size_t (start[c + 1] - start[c]); };
   const std::size_t crowded = kCrowdedCell * occupancy;
-  // Every point is in a cell of its own when the points coincide (no extent): nothing
-  // to compare with faces then, and every cell is one position.
+  // When every point coincides (no extent) they share one cell at every level and
+  // there are no faces to compare with: the k-d tree takes them all.
   const bool flat = !(grid.scale > 0.0);
   const double width = flat ? 0.0 : double (std::uint64_t (1) << (bits - level)) / grid.scale;
   // How far a point may lie outside its cell's faces as computed here (lo + m width, in
@@ -585,15 +582,11 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
       rest.size (), num_threads,
       [&] (std::size_t begin, std::size_t end) {
         std::vector<std::uint64_t> scratch;
-        std::vector<float> d2 (kk);
         for (std::size_t r = begin; r < end; ++r)
         {
           const VertexIndex v = rest[r];
-          tree.nearestOthersExact (v, k, indices + std::size_t (v) * kk, d2.data (), scratch);
-          double sum = 0.0;
-          for (std::size_t m = 0; m < kk; ++m)
-            sum += std::sqrt (double (d2[m]));
-          mean_distances[v] = sum / double (kk);
+          mean_distances[v] =
+              tree.nearestOthersExact (v, k, indices + std::size_t (v) * kk, scratch);
         }
       },
       256);

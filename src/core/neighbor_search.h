@@ -45,9 +45,10 @@ public:
 
   /** The k nearest other points of point `self` (k < number of points) by (squared
    *  distance, index), nearest first, exactly (nearestOthers keeps any of the points tied
-   *  at the k-th distance). `scratch`: any vector, reused between calls. */
-  void
-  nearestOthersExact (VertexIndex self, int k, VertexIndex *indices, float *squared_distances,
+   *  at the k-th distance); returns the mean of their distances. `scratch`: any vector,
+   *  reused between calls. */
+  double
+  nearestOthersExact (VertexIndex self, int k, VertexIndex *indices,
                       std::vector<std::uint64_t> &scratch) const;
 
   /** Every other point closer than `radius` to point `self`, appended
