@@ -11,11 +11,13 @@
  * distance (squared, both ways) for the meshes, the mean distance to the surface for the
  * sphere and the cube.
  *
- *   calibrate_gamma [--data DIR] [--only NAME,NAME] [--sizes N,N]
+ *   calibrate_gamma [--data DIR] [--only NAME,NAME] [--sizes N,N] [--adaptive] [--no-risk]
  *   calibrate_gamma --noise-table
  *
  * --only: the shapes whose names contain one of the names; --sizes: of 10000, 20000, 50000
- * (the seeds stay those of the full run).
+ * (the seeds stay those of the full run); --adaptive: the filters with
+ * setAdaptiveSupport (true); --no-risk: without the risk estimate's runs (its figures
+ * then read nan).
  *
  * For every cloud, both filters run at multiples m (1/4 to 16, steps of sqrt 2) of the
  * current default gamma (a "raw" line per cloud and filter gives the errors of the
@@ -58,12 +60,16 @@ const std::vector<double> kMultiples = {0.25, 0.354, 0.5, 0.707, 1.0, 1.414, 2.0
                                         2.828, 4.0, 5.657, 8.0, 11.31, 16.0};
 constexpr std::size_t kDefault = 4;
 
+bool adaptive_support = false;  // --adaptive
+bool with_risk = true;          // not --no-risk
+
 template <typename Filter>
 Sample
 sweep (const Cloud::Ptr &cloud, const std::function<double (const Cloud &)> &error)
 {
   Filter filter;
   filter.setInputCloud (cloud);
+  filter.setAdaptiveSupport (adaptive_support);
   Cloud out;
   filter.filter (out);
   Sample s;
@@ -80,6 +86,9 @@ sweep (const Cloud::Ptr &cloud, const std::function<double (const Cloud &)> &err
     if (s.error.back () < s.best)
       s.best = s.error.back (), s.best_m = m;
   }
+  s.risk_error = s.risk_m = std::numeric_limits<double>::quiet_NaN ();
+  if (!with_risk)
+    return s;
   filter.setAutomaticGamma ();
   filter.setGammaSelection (GammaSelection::RISK_ESTIMATE);
   filter.filter (out);
@@ -149,24 +158,26 @@ main (int argc, char **argv)
   std::string data = PGD_SHARED_DATA;
   std::string only;  // comma-separated substrings of the shape names to run
   std::string sizes = ",10000,20000,50000,";
-  for (int a = 1; a + 1 < argc; a += 2)
+  const char *usage = "usage: %s [--data DIR] [--only NAME,NAME] [--sizes N,N] [--adaptive] "
+                      "[--no-risk] | --noise-table\n";
+  for (int a = 1; a < argc; ++a)
   {
-    if (!std::strcmp (argv[a], "--data"))
-      data = argv[a + 1];
-    else if (!std::strcmp (argv[a], "--only"))
-      only = std::string (",") + argv[a + 1] + ",";
-    else if (!std::strcmp (argv[a], "--sizes"))
-      sizes = std::string (",") + argv[a + 1] + ",";
+    const bool has_value = a + 1 < argc;
+    if (!std::strcmp (argv[a], "--adaptive"))
+      adaptive_support = true;
+    else if (!std::strcmp (argv[a], "--no-risk"))
+      with_risk = false;
+    else if (has_value && !std::strcmp (argv[a], "--data"))
+      data = argv[++a];
+    else if (has_value && !std::strcmp (argv[a], "--only"))
+      only = std::string (",") + argv[++a] + ",";
+    else if (has_value && !std::strcmp (argv[a], "--sizes"))
+      sizes = std::string (",") + argv[++a] + ",";
     else
     {
-      std::fprintf (stderr, "usage: %s [--data DIR] [--only NAME,NAME] [--sizes N,N] | --noise-table\n", argv[0]);
+      std::fprintf (stderr, usage, argv[0]);
       return 2;
     }
-  }
-  if (argc % 2 == 0)
-  {
-    std::fprintf (stderr, "usage: %s [--data DIR] [--only NAME,NAME] [--sizes N,N] | --noise-table\n", argv[0]);
-    return 2;
   }
   const auto wanted = [&] (const std::string &name) {
     if (only.empty ())
@@ -258,6 +269,7 @@ main (int argc, char **argv)
       {
         GraphTikhonovSmoothing<pcl::PointXYZ> f;
         f.setInputCloud (clouds[i]);
+        f.setAdaptiveSupport (adaptive_support);
         f.setGamma (m * samples[i].gamma);
         f.filter (out);
       }
@@ -265,6 +277,7 @@ main (int argc, char **argv)
       {
         GraphTVSmoothing<pcl::PointXYZ> f;
         f.setInputCloud (clouds[i]);
+        f.setAdaptiveSupport (adaptive_support);
         f.setGamma (m * samples[i].gamma);
         f.filter (out);
       }

@@ -29,6 +29,7 @@ struct Options
   std::vector<std::size_t> sizes;  ///< pugan: cloud sizes (empty = the section's own)
   bool wlop = false;               ///< pugan: also run WLOP (slow: ~16 s per 10,000 points)
   bool risk = true;                ///< pugan, bunny: also ours with the risk-estimate gamma
+  bool adaptive_support = false;   ///< pugan, bunny: ours with setAdaptiveSupport (true)
 };
 
 int
@@ -59,6 +60,7 @@ struct MethodOptions
 {
   bool wlop = true;                                  ///< WLOP is slow: optional
   bool risk_gamma = true;  ///< ours with GammaSelection::RISK_ESTIMATE (about 20 runs each)
+  bool adaptive_support = false;  ///< ours with setAdaptiveSupport (true)
   std::vector<unsigned> bilateral_k = {30, 60, 120}; ///< the bilateral filter's sweep
 };
 

@@ -77,6 +77,7 @@ bunny (const Options &options)
   MethodOptions method_options;
   method_options.wlop = false;  // about 2 minutes per scan here
   method_options.risk_gamma = options.risk;
+  method_options.adaptive_support = options.adaptive_support;
   if (options.quick)
   {
     method_options.bilateral_k = {60};

@@ -125,6 +125,8 @@ runMethods (const Cloud::Ptr &noisy, const std::function<double (const Cloud &)>
   const std::vector<double> factors = {0.25, 0.5, 2.0, 4.0};
   GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
   GraphTVSmoothing<pcl::PointXYZ> tv;
+  tikhonov.setAdaptiveSupport (options.adaptive_support);
+  tv.setAdaptiveSupport (options.adaptive_support);
   const std::pair<GraphSmoothing<pcl::PointXYZ> *, const char *> ours[] = {{&tikhonov, "Tikhonov"},
                                                                            {&tv, "TV"}};
   std::vector<MethodResult> by_risk;

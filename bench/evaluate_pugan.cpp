@@ -46,11 +46,12 @@ struct Score
  *  its Chamfer distance to the clean points (both normalised by the clean cloud). */
 std::vector<Score>
 runCase (const Cloud &clean, const Cloud::Ptr &noisy, const MeshDistance &mesh, bool quick, bool wlop,
-         bool risk, const std::string &save_prefix)
+         bool risk, bool adaptive_support, const std::string &save_prefix)
 {
   MethodOptions options;
   options.wlop = wlop;
   options.risk_gamma = risk;
+  options.adaptive_support = adaptive_support;
   if (quick)
   {
     options.bilateral_k = {60};
@@ -169,7 +170,7 @@ pugan (const Options &options)
                                      : std::string ();
         const auto scores =
             runCase (clean, noisy, distance, options.quick, options.wlop && !options.quick,
-                     options.risk, save);
+                     options.risk, options.adaptive_support, save);
         std::printf ("%-12s %5zu %.0f%%: P2M x 1e4", name.c_str (), n, noise * 100);
         for (std::size_t m = 0; m < methods.size (); ++m)
         {

@@ -417,7 +417,7 @@ lines (const std::string &text)
 const char *const every_option =
     "-outliers -tikhonov -tv -radius -sigma -threshold_ratio -degree_threshold -outlier_fraction "
     "-keep_organized -threads -k -gamma -graph_iterations -normal_displacement -local_surface "
-    "-shrinkage_correction -tolerance -max_iterations -solver -norm -memory_limit -removed -ascii -q "
+    "-adaptive_support -shrinkage_correction -tolerance -max_iterations -solver -norm -memory_limit -removed -ascii -q "
     "-temporal -smoother -k2 -window -motion_compensation";
 
 }  // namespace
@@ -1168,6 +1168,42 @@ TEST (Cli, GammaRiskChoosesAsTheLibraryDoes)
   EXPECT_EQ (runTool (dir, {"in.pcd", "out.pcd", "-tikhonov", "-gamma", "risky"}).code, 2);
 }
 
+/** Runs the tool on dir/in.pcd (which holds xyz) with args and checks that its y
+ *  coordinates are the library filter's on xyz, point by point; returns them (empty on a
+ *  failure, which it reports). */
+std::vector<float>
+toolMatchesLibrary (const fs::path &dir, const std::vector<std::string> &args,
+                    pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &filter,
+                    const pcl::PointCloud<pcl::PointXYZ>::Ptr &xyz)
+{
+  filter.setInputCloud (xyz);
+  pcl::PointCloud<pcl::PointXYZ> expected;
+  filter.filter (expected);
+  const ToolRun run = runTool (dir, args);
+  if (run.code != 0)
+  {
+    ADD_FAILURE () << describe (args, run);
+    return {};
+  }
+  const PCLPointCloud2 output = load (dir / "out.pcd");
+  if (size (output) != expected.size ())
+  {
+    ADD_FAILURE () << "size " << size (output) << " against " << expected.size ();
+    return {};
+  }
+  std::vector<float> y;
+  for (std::size_t i = 0; i < expected.size (); ++i)
+  {
+    if (coordinate (output, i, "y") != expected[i].y)
+    {
+      ADD_FAILURE () << describe (args, run) << ": point " << i << " differs";
+      return {};
+    }
+    y.push_back (expected[i].y);
+  }
+  return y;
+}
+
 TEST (Cli, LocalSurfaceReachesTheFilter)
 {
   // Each value of -local_surface gives the library's result with that surface; no
@@ -1188,20 +1224,11 @@ TEST (Cli, LocalSurfaceReachesTheFilter)
     pcl_graph_denoise::GraphTVSmoothing<pcl::PointXYZ> filter;
     if (!value.empty ())
       filter.setLocalSurface (surface);
-    filter.setInputCloud (xyz);
-    pcl::PointCloud<pcl::PointXYZ> expected;
-    filter.filter (expected);
     std::vector<std::string> args = {"in.pcd", "out.pcd", "-tv"};
     if (!value.empty ())
       args.insert (args.end (), {"-local_surface", value});
-    const ToolRun run = runTool (dir, args);
-    ASSERT_EQ (run.code, 0) << describe (args, run);
-    const PCLPointCloud2 output = load (dir / "out.pcd");
-    ASSERT_EQ (size (output), expected.size ());
-    for (std::size_t i = 0; i < expected.size (); ++i)
-      ASSERT_EQ (coordinate (output, i, "y"), expected[i].y) << value << ", point " << i;
-    for (const auto &p : expected)
-      y[value].push_back (p.y);
+    y[value] = toolMatchesLibrary (dir, args, filter, xyz);
+    ASSERT_FALSE (y[value].empty ());
   }
   EXPECT_EQ (y[""], y["blended"]);
   EXPECT_NE (y["plane"], y["blended"]);
@@ -1210,6 +1237,34 @@ TEST (Cli, LocalSurfaceReachesTheFilter)
   const ToolRun help = runTool (dir, {"-h"});
   EXPECT_NE (help.out.find ("-local_surface plane|quadric|blended"), std::string::npos) << help.out;
   EXPECT_NE (help.out.find ("(default: blended)"), std::string::npos) << help.out;
+}
+
+TEST (Cli, AdaptiveSupportReachesTheFilter)
+{
+  // -adaptive_support 1 gives the library's result with setAdaptiveSupport (true), 0 and
+  // no value its default (off); the two differ, and the help tells the default.
+  const fs::path dir = testFolder ();
+  const PCLPointCloud2 input = sphereFrames ()[0];
+  savePcd (dir / "in.pcd", input);
+  pcl::PointCloud<pcl::PointXYZ>::Ptr xyz (new pcl::PointCloud<pcl::PointXYZ>);
+  pcl::fromPCLPointCloud2 (input, *xyz);
+  std::map<std::string, std::vector<float>> y;  // the tool's results
+  for (const std::string value : {"", "0", "1"})
+  {
+    pcl_graph_denoise::GraphTikhonovSmoothing<pcl::PointXYZ> filter;
+    if (value == "1")
+      filter.setAdaptiveSupport (true);
+    std::vector<std::string> args = {"in.pcd", "out.pcd", "-tikhonov"};
+    if (!value.empty ())
+      args.insert (args.end (), {"-adaptive_support", value});
+    y[value] = toolMatchesLibrary (dir, args, filter, xyz);
+    ASSERT_FALSE (y[value].empty ());
+  }
+  EXPECT_EQ (y[""], y["0"]);
+  EXPECT_NE (y["1"], y["0"]);
+  EXPECT_EQ (runTool (dir, {"in.pcd", "out.pcd", "-tikhonov", "-adaptive_support", "maybe"}).code, 2);
+  const ToolRun help = runTool (dir, {"-h"});
+  EXPECT_NE (help.out.find ("twice the time\n                          (default: 0)"), std::string::npos) << help.out;
 }
 
 TEST (Cli, SmoothingReportsEachPassGraphAsItIsBuilt)

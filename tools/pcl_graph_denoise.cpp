@@ -199,6 +199,8 @@ configure (pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &filter, const Step 
       pcl_graph_denoise::tools::localSurfaceFromName (v.text, surface);  // checked when parsed
       filter.setLocalSurface (surface);
     }
+    else if (name == "adaptive_support")
+      filter.setAdaptiveSupport (v.number != 0.0);
     else if (name == "shrinkage_correction")
       filter.setShrinkageCorrection (v.number != 0.0);
     else if (name == "tolerance")

@@ -179,7 +179,8 @@ public:
 
   /** \brief The surface each point moves onto with normal displacement on.
    *  LocalSurface::BLENDED_QUADRICS (default): around every vertex, a quadric height
-   *  field fitted over two graph rings of the smoothed points, robustly re-weighted by
+   *  field fitted over two graph rings of the smoothed points (or three:
+   *  setAdaptiveSupport), robustly re-weighted by
    *  the estimated noise level so that the far side of a thin wall or the other face at
    *  an edge does not pull it; each point moves onto the weighted mean of the quadrics of
    *  its two rings (weights: its distance to each patch's centre and to its surface), so
@@ -196,6 +197,20 @@ public:
   /** \brief The local surface set. */
   inline LocalSurface
   getLocalSurface () const { return local_surface_; }
+
+  /** \brief Fit each quadric over a support chosen per vertex (default false): over
+   *  two graph rings, and over three where that wider fit agrees with the two-ring one
+   *  (their surfaces, under the two-ring points, within 2 sqrt(6) noise levels in
+   *  root-sum-square: core::QuadricSupport::ADAPTIVE), so that smooth parts average more
+   *  noise while edges, thin parts and fine detail keep the narrow fit. false = two rings
+   *  everywhere. Applies to the quadric surfaces (setLocalSurface). About twice the
+   *  quadrics' time; docs/evaluation.md section 5 has its measurements. */
+  inline void
+  setAdaptiveSupport (bool adaptive) { adaptive_support_ = adaptive; }
+
+  /** \brief Whether the quadrics' support is chosen per vertex. */
+  inline bool
+  getAdaptiveSupport () const { return adaptive_support_; }
 
   /** \brief Correct the shrinkage of curved surfaces (default true) by twicing: with
    *  H the smoothing, the result is 2 H(f) - H(H(f)), for Tikhonov the spectral
@@ -353,6 +368,7 @@ protected:
   int graph_iterations_ = 1;      ///< setGraphIterations
   bool normal_displacement_ = true;                      ///< setNormalDisplacement
   LocalSurface local_surface_ = LocalSurface::BLENDED_QUADRICS;  ///< setLocalSurface
+  bool adaptive_support_ = false;                        ///< setAdaptiveSupport
   bool shrinkage_correction_ = true;                     ///< setShrinkageCorrection
   double tolerance_;              ///< setTolerance
   int max_iterations_;            ///< setMaximumIterations
