@@ -623,10 +623,22 @@ TEST (SmoothingQuality, AdaptiveSupportWidensTheFitsOnlyWhereTheSurfaceIsSmooth)
       EXPECT_NEAR (filter->getUsedGamma (), 0.5 * gamma, 1e-9 * gamma);
       filter->setGamma (gamma);
       const double adaptive = meanDistance (*run (*filter, cloud), distance);
+      EXPECT_EQ (filter->getUsedGamma (), gamma);  // a gamma set is not halved
       std::printf ("%s, %s: two rings %.6f, adaptive support %.6f (same gamma)\n", name,
                    cloud == sphere ? "sphere" : "corrugated square", two_rings, adaptive);
       EXPECT_LT (adaptive, gain * two_rings);
     }
+    // The plane local surface has no quadrics: the option changes nothing there.
+    filter->setLocalSurface (LocalSurface::PLANE);
+    filter->setAutomaticGamma ();
+    filter->setAdaptiveSupport (false);
+    const auto plane = run (*filter, sphere);
+    const double plane_gamma = filter->getUsedGamma ();
+    filter->setAdaptiveSupport (true);
+    const auto plane_adaptive = run (*filter, sphere);
+    EXPECT_EQ (filter->getUsedGamma (), plane_gamma);
+    for (std::size_t i = 0; i < plane->size (); ++i)
+      ASSERT_TRUE (samePoint ((*plane)[i], (*plane_adaptive)[i])) << name << ", point " << i;
   }
 }
 

@@ -187,8 +187,8 @@ public:
    *  that the overlapping fits average out their own noise (core::quadricDisplacement
    *  with core::QuadricProjection::BLENDED). LocalSurface::QUADRIC: onto its own vertex's
    *  quadric only, the previous default. With either, the data-derived gamma is half the
-   *  paper rule's (the fits remove noise themselves) times the detail term, and for TV
-   *  the noise term (core::refinedGammaFactor). LocalSurface::PLANE: the plane
+   *  paper rule's (the fits remove noise themselves; a quarter with setAdaptiveSupport)
+   *  times the detail term, and for TV the noise term (core::refinedGammaFactor). LocalSurface::PLANE: the plane
    *  through the smoothed point, normal from the fit of the smoothed points over two rings
    *  (core::normalDisplacement). All measured in docs/evaluation.md. */
   inline void
@@ -203,8 +203,10 @@ public:
    *  (their surfaces, under the two-ring points, within 2 sqrt(6) noise levels in
    *  root-sum-square: core::QuadricSupport::ADAPTIVE), so that smooth parts average more
    *  noise while edges, thin parts and fine detail keep the narrow fit. false = two rings
-   *  everywhere. Applies to the quadric surfaces (setLocalSurface). About twice the
-   *  quadrics' time; docs/evaluation.md section 5 has its measurements. */
+   *  everywhere. The data-derived gamma is halved again with it (the wider fits remove
+   *  more noise). Applies to the quadric surfaces only (setLocalSurface; no effect with
+   *  LocalSurface::PLANE or normal displacement off). 1.1-2.8 times the smoothing's
+   *  time; docs/evaluation.md section 5 has its measurements. */
   inline void
   setAdaptiveSupport (bool adaptive) { adaptive_support_ = adaptive; }
 
