@@ -64,6 +64,16 @@ struct MethodOptions
   std::vector<unsigned> bilateral_k = {30, 60, 120}; ///< the bilateral filter's sweep
 };
 
+/** The methods' settings a section's options ask for: --no-risk, --adaptive, --wlop, and
+ *  --quick's smaller sweeps (one bilateral k, no risk estimate, no WLOP). */
+MethodOptions
+methodOptions (const Options &options);
+
+/** The line a table of ours run with --adaptive starts with (empty otherwise): the method
+ *  names stay the defaults'. */
+std::string
+runNote (const Options &options);
+
 /** Runs every method of the comparison on `noisy`: the input itself, ours (Tikhonov and
  *  TV with defaults, and at the best gamma of a sweep over 1/4x to 4x the default), and
  *  the peers at the best setting of a sweep each: pcl::MovingLeastSquares (radius 1 to 3

@@ -74,15 +74,8 @@ bunny (const Options &options)
   const std::vector<std::string> files =
       options.quick ? std::vector<std::string>{"bun000.ply"}
                     : std::vector<std::string>{"bun000.ply", "bun045.ply", "bun090.ply"};
-  MethodOptions method_options;
+  MethodOptions method_options = methodOptions (options);
   method_options.wlop = false;  // about 2 minutes per scan here
-  method_options.risk_gamma = options.risk;
-  method_options.adaptive_support = options.adaptive_support;
-  if (options.quick)
-  {
-    method_options.bilateral_k = {60};
-    method_options.risk_gamma = false;
-  }
 
   std::map<std::string, std::vector<MethodResult>> table;
   for (const auto &file : files)
@@ -120,9 +113,7 @@ bunny (const Options &options)
   }
 
   std::ofstream md (options.out + "/bunny.md");
-  // A run with --adaptive says so above its table (the method names stay the defaults').
-  if (options.adaptive_support)
-    md << "Ours with `setAdaptiveSupport (true)` (`--adaptive`).\n\n";
+  md << runNote (options);
   md << "| method |";
   for (const auto &scan : table)
     md << ' ' << scan.first << " (" << scan.second.front ().output.size () << " points) |";

@@ -112,6 +112,24 @@ firstPeer ()
   return 7;
 }
 
+MethodOptions
+methodOptions (const Options &options)
+{
+  MethodOptions m;
+  m.wlop = options.wlop && !options.quick;
+  m.risk_gamma = options.risk && !options.quick;
+  m.adaptive_support = options.adaptive_support;
+  if (options.quick)
+    m.bilateral_k = {60};
+  return m;
+}
+
+std::string
+runNote (const Options &options)
+{
+  return options.adaptive_support ? "Ours with `setAdaptiveSupport (true)` (`--adaptive`).\n\n" : "";
+}
+
 std::vector<MethodResult>
 runMethods (const Cloud::Ptr &noisy, const std::function<double (const Cloud &)> &error,
             const MethodOptions &options)

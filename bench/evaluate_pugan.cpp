@@ -45,18 +45,9 @@ struct Score
 /** Every method on one noisy cloud: the chosen setting by point-to-mesh distance, then
  *  its Chamfer distance to the clean points (both normalised by the clean cloud). */
 std::vector<Score>
-runCase (const Cloud &clean, const Cloud::Ptr &noisy, const MeshDistance &mesh, bool quick, bool wlop,
-         bool risk, bool adaptive_support, const std::string &save_prefix)
+runCase (const Cloud &clean, const Cloud::Ptr &noisy, const MeshDistance &mesh,
+         const MethodOptions &options, const std::string &save_prefix)
 {
-  MethodOptions options;
-  options.wlop = wlop;
-  options.risk_gamma = risk;
-  options.adaptive_support = adaptive_support;
-  if (quick)
-  {
-    options.bilateral_k = {60};
-    options.risk_gamma = false;
-  }
   const auto results = runMethods (
       noisy, [&] (const Cloud &out) { return pointToMeshDistance (out, mesh) * 1e4; }, options);
   const Similarity frame = unitSphereNormalisation (clean);
@@ -171,8 +162,7 @@ pugan (const Options &options)
                                      ? options.out + "/pugan_fandisk_10000_2_"
                                      : std::string ();
         const auto scores =
-            runCase (clean, noisy, distance, options.quick, options.wlop && !options.quick,
-                     options.risk, options.adaptive_support, save);
+            runCase (clean, noisy, distance, methodOptions (options), save);
         std::printf ("%-12s %5zu %.0f%%: P2M x 1e4", name.c_str (), n, noise * 100);
         for (std::size_t m = 0; m < methods.size (); ++m)
         {
@@ -194,9 +184,7 @@ pugan (const Options &options)
     return s / double (v.size ());  // NaN where a method was not run
   };
   // The table: mean over the meshes, as the protocol reports.
-  // A run with --adaptive says so above its table (the method names stay the defaults').
-  if (options.adaptive_support)
-    md << "Ours with `setAdaptiveSupport (true)` (`--adaptive`).\n\n";
+  md << runNote (options);
   md << "| method |";
   for (std::size_t n : sizes)
     for (double noise : levels)

@@ -180,16 +180,15 @@ public:
   /** \brief The surface each point moves onto with normal displacement on.
    *  LocalSurface::BLENDED_QUADRICS (default): around every vertex, a quadric height
    *  field fitted over two graph rings of the smoothed points (or three:
-   *  setAdaptiveSupport), robustly re-weighted by
-   *  the estimated noise level so that the far side of a thin wall or the other face at
-   *  an edge does not pull it; each point moves onto the weighted mean of the quadrics of
+   *  setAdaptiveSupport), robustly re-weighted by the estimated noise level so that the
+   *  far side of a thin wall or the other face at an edge does not pull it; each point moves onto the weighted mean of the quadrics of
    *  its two rings (weights: its distance to each patch's centre and to its surface), so
    *  that the overlapping fits average out their own noise (core::quadricDisplacement
    *  with core::QuadricProjection::BLENDED). LocalSurface::QUADRIC: onto its own vertex's
    *  quadric only, the previous default. With either, the data-derived gamma is half the
    *  paper rule's (the fits remove noise themselves; a quarter with setAdaptiveSupport)
-   *  times the detail term, and for TV the noise term (core::refinedGammaFactor). LocalSurface::PLANE: the plane
-   *  through the smoothed point, normal from the fit of the smoothed points over two rings
+   *  times the detail term, and for TV the noise term (core::refinedGammaFactor).
+   *  LocalSurface::PLANE: the plane through the smoothed point, normal from the fit of the smoothed points over two rings
    *  (core::normalDisplacement). All measured in docs/evaluation.md. */
   inline void
   setLocalSurface (LocalSurface surface) { local_surface_ = surface; }
