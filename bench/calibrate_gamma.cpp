@@ -11,12 +11,12 @@
  * distance (squared, both ways) for the meshes, the mean distance to the surface for the
  * sphere and the cube.
  *
- *   calibrate_gamma [--data DIR] [--only NAME,NAME] [--sizes N,N] [--adaptive] [--no-risk]
+ *   calibrate_gamma [--data DIR] [--only NAME,NAME] [--sizes N,N] [--two-ring] [--no-risk]
  *   calibrate_gamma --noise-table
  *
  * --only: the shapes whose names contain one of the names; --sizes: of 10000, 20000, 50000
- * (the seeds stay those of the full run); --adaptive: the filters with
- * setAdaptiveSupport (true); --no-risk: without the risk estimate's runs (its figures
+ * (the seeds stay those of the full run); --two-ring: the filters with
+ * setAdaptiveSupport (false); --no-risk: without the risk estimate's runs (its figures
  * then read nan).
  *
  * For every cloud, both filters run at multiples m (1/4 to 16, steps of sqrt 2) of the
@@ -60,7 +60,7 @@ const std::vector<double> kMultiples = {0.25, 0.354, 0.5, 0.707, 1.0, 1.414, 2.0
                                         2.828, 4.0, 5.657, 8.0, 11.31, 16.0};
 constexpr std::size_t kDefault = 4;
 
-bool adaptive_support = false;  // --adaptive
+bool adaptive_support = true;   // not --two-ring
 bool with_risk = true;          // not --no-risk
 
 template <typename Filter>
@@ -158,13 +158,13 @@ main (int argc, char **argv)
   std::string data = PGD_SHARED_DATA;
   std::string only;  // comma-separated substrings of the shape names to run
   std::string sizes = ",10000,20000,50000,";
-  const char *usage = "usage: %s [--data DIR] [--only NAME,NAME] [--sizes N,N] [--adaptive] "
+  const char *usage = "usage: %s [--data DIR] [--only NAME,NAME] [--sizes N,N] [--two-ring] "
                       "[--no-risk] | --noise-table\n";
   for (int a = 1; a < argc; ++a)
   {
     const bool has_value = a + 1 < argc;
-    if (!std::strcmp (argv[a], "--adaptive"))
-      adaptive_support = true;
+    if (!std::strcmp (argv[a], "--two-ring"))
+      adaptive_support = false;
     else if (!std::strcmp (argv[a], "--no-risk"))
       with_risk = false;
     else if (has_value && !std::strcmp (argv[a], "--data"))

@@ -29,7 +29,7 @@ struct Options
   std::vector<std::size_t> sizes;  ///< pugan: cloud sizes (empty = the section's own)
   bool wlop = false;               ///< pugan: also run WLOP (slow: ~16 s per 10,000 points)
   bool risk = true;                ///< pugan, bunny: also ours with the risk-estimate gamma
-  bool adaptive_support = false;   ///< pugan, bunny: ours with setAdaptiveSupport (true)
+  bool adaptive_support = true;    ///< pugan, bunny: false = ours with setAdaptiveSupport (false)
 };
 
 int
@@ -60,16 +60,16 @@ struct MethodOptions
 {
   bool wlop = true;                                  ///< WLOP is slow: optional
   bool risk_gamma = true;  ///< ours with GammaSelection::RISK_ESTIMATE (about 20 runs each)
-  bool adaptive_support = false;  ///< ours with setAdaptiveSupport (true)
+  bool adaptive_support = true;   ///< false: ours with setAdaptiveSupport (false)
   std::vector<unsigned> bilateral_k = {30, 60, 120}; ///< the bilateral filter's sweep
 };
 
-/** The methods' settings a section's options ask for: --no-risk, --adaptive, --wlop, and
+/** The methods' settings a section's options ask for: --no-risk, --two-ring, --wlop, and
  *  --quick's smaller sweeps (one bilateral k, no risk estimate, no WLOP). */
 MethodOptions
 methodOptions (const Options &options);
 
-/** The line a table of ours run with --adaptive starts with (empty otherwise): the method
+/** The line a table of ours run with --two-ring starts with (empty otherwise): the method
  *  names stay the defaults'. */
 std::string
 runNote (const Options &options);

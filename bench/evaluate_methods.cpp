@@ -127,7 +127,7 @@ methodOptions (const Options &options)
 std::string
 runNote (const Options &options)
 {
-  return options.adaptive_support ? "Ours with `setAdaptiveSupport (true)` (`--adaptive`).\n\n" : "";
+  return options.adaptive_support ? "" : "Ours with `setAdaptiveSupport (false)` (`--two-ring`).\n\n";
 }
 
 std::vector<MethodResult>

@@ -133,8 +133,8 @@ pugan (const Options &options)
     return 2;
   }
   dat << "# mesh points noise method cd_1e4 p2m_1e4 seconds setting\n";
-  if (options.adaptive_support)
-    dat << "# adaptive_support 1\n";
+  if (!options.adaptive_support)
+    dat << "# adaptive_support 0\n";
   const auto &methods = methodNames ();
   // results[size][noise][method] -> per-mesh scores
   std::map<std::size_t, std::map<double, std::map<std::string, std::vector<Score>>>> results;

@@ -15,7 +15,9 @@
  *   byte 0  flags: 1 CHOLMOD, 2 no normal displacement, 4 plane surface, 8 no shrinkage
  *           correction, 16 anisotropic TV, 32 negative, 64 keep organised, 128 organised
  *   byte 1  k: 0 -> 0, 254 -> -1, 255 -> INT_MAX, else the value
- *   byte 2  sigma, byte 3 gamma (255: automatic), byte 4 radius: kValues[b % 32]
+ *   byte 2  sigma: kValues[b % 32]; bit 5: quadrics over two rings (no adaptive support),
+ *           bit 6: the own quadric instead of the blended quadrics
+ *   byte 3  gamma (255: automatic), byte 4 radius: kValues[b % 32]
  *   byte 5  threshold rule (b & 3: ratio, absolute, fraction, default) and its value
  *           kValues[b >> 3]
  *   byte 6  b & 15: maximum iterations (0 stays 0: invalid), (b >> 4) & 3: graph
@@ -249,7 +251,10 @@ checkSmoothing (GraphSmoothing<pcl::PointXYZ> &filter, const Cloud::Ptr &cloud,
   if (p[6] & 128)
     filter.setTolerance (1e-12);
   filter.setNormalDisplacement (!(flags & 2));
-  filter.setLocalSurface (flags & 4 ? LocalSurface::PLANE : LocalSurface::QUADRIC);
+  filter.setLocalSurface (flags & 4    ? LocalSurface::PLANE
+                          : p[2] & 64 ? LocalSurface::QUADRIC
+                                      : LocalSurface::BLENDED_QUADRICS);
+  filter.setAdaptiveSupport (!(p[2] & 32));
   filter.setShrinkageCorrection (!(flags & 8));
   filter.setNumberOfThreads (threads);
   filter.setInputCloud (cloud);

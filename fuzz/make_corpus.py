@@ -159,6 +159,9 @@ def filters_seeds():
     # Tiny gamma, anisotropic TV, no refinements, two threads, strict tolerance.
     write(t, "tiny_gamma_anisotropic", filters_input([2 | 8 | 16, 6, 3, 1, 0, 1 | (4 << 3), 0xDF], [],
                                                      grid_points(sphere(50, 17))))
+    # The own quadric (sigma byte bit 6) over two rings (bit 5: no adaptive support).
+    write(t, "own_quadric_two_rings", filters_input([0, 10, 64 | 32, 255, 0, 3, 0x1A], [],
+                                                    grid_points(sphere(60, 21))))
     # Geo-referenced (kind 5), micrometres (kind 4), duplicates (kind 2), k = INT_MAX.
     rng = random.Random(18)
     geo = [(5, bytes(rng.randrange(256) for _ in range(3))) for _ in range(40)]

@@ -43,8 +43,8 @@ Regenerate everything on this page with `bash scripts/evaluate.sh` (it installs,
 not: they are wall-clock seconds on the machine that ran it, 2 cores).
 
 Section 1 measures the paper's filters exactly. Sections 2 and 3 measure the filters as they run
-by default, with two refinements beyond the paper (`setNormalDisplacement`,
-`setShrinkageCorrection`; section 5 says why).
+by default, with two refinements beyond the paper (`setNormalDisplacement`, onto blended
+quadrics over an adaptive support, and `setShrinkageCorrection`; section 5 says why).
 
 ## 1. The paper's experiment (its Figure 3)
 
@@ -100,10 +100,10 @@ MID
      ! grep '"Tikhonov (risk γ)"' "$results/pugan.dat" | grep -qv ' nan '; then
     no_risk=" --no-risk"
   fi
-  # A run with --adaptive (ours with setAdaptiveSupport (true)) marks its data.
-  adaptive=""
-  grep -q '^# adaptive_support 1' "$results/pugan.dat" && adaptive=" --adaptive"
-  echo "Command: \`build/bench/evaluate pugan --sizes $sizes$no_risk$adaptive\`. The 50,000-point columns take about 25 s"
+  # A run with --two-ring (ours with setAdaptiveSupport (false)) marks its data.
+  two_ring=""
+  grep -q '^# adaptive_support 0' "$results/pugan.dat" && two_ring=" --two-ring"
+  echo "Command: \`build/bench/evaluate pugan --sizes $sizes$no_risk$two_ring\`. The 50,000-point columns take about 25 s"
   if [[ ",$sizes," == *",50000,"* ]]; then
     echo "per cloud for the peers' sweeps (\`PGD_PUGAN_SIZES=10000,50000 bash scripts/evaluate.sh\`); this"
     echo "run has them."
@@ -529,16 +529,16 @@ before the detail term are from the previous runs, on the same clouds):
 |---|---|---|---|
 | Tikhonov, own quadric | 1.005 (30) | 1.118 (13) | 1.060 (43) |
 | Tikhonov, blended quadrics | 0.888 (38) | 1.055 (19) | 0.968 (57) |
-| **Tikhonov, blended quadrics, detail term (the default)** | **0.871 (39)** | **0.873 (35)** | **0.872 (74)** |
+| **Tikhonov, blended quadrics, detail term (then the default)** | **0.871 (39)** | **0.873 (35)** | **0.872 (74)** |
 | the same, best of ¼–4 × γ per cloud (an oracle) | 0.813 (42) | 0.823 (39) | 0.818 (81) |
 | TV, own quadric | 1.004 (27) | 1.673 (8) | 1.296 (35) |
 | TV, blended quadrics | 0.926 (33) | 1.746 (11) | 1.272 (44) |
 | TV, blended quadrics, detail term | 0.911 (31) | 1.211 (15) | 1.050 (46) |
 | the same, best of ¼–4 × γ per cloud (an oracle) | 0.850 (38) | 0.919 (32) | 0.884 (70) |
-| **TV, blended quadrics, detail and noise terms (the default)** | **0.940 (34)** | **0.959 (30)** | **0.949 (64)** |
+| **TV, blended quadrics, detail and noise terms (then the default)** | **0.940 (34)** | **0.959 (30)** | **0.949 (64)** |
 | the same, best of ¼–4 × γ per cloud (an oracle) | 0.854 (38) | 0.914 (33) | 0.884 (71) |
 
-The defaults' mean P2M (×10⁴) is below GLR's quoted figures at every level for Tikhonov: 0.52 /
+Those defaults' mean P2M (×10⁴) was below GLR's quoted figures at every level for Tikhonov: 0.52 /
 1.17 / 2.01 at 10,000 points and 0.10 / 0.51 / 1.58 at 50,000 (GLR 1.05 / 1.31 / 2.11 and 0.16 /
 0.83 / 2.71); TV's at or below them but at 10,000 points and 3% (0.50 / 1.31 / 2.37 and 0.11 /
 0.57 / 1.58; with the detail term alone 0.46 / 1.13 / 2.22 and 0.12 / 0.72 / 2.42). Against the
@@ -560,8 +560,8 @@ and bun090. Time per cloud (section 2's run, idle machine): Tikhonov 0.104 s at 
 0.39 s at 50,000, TV 0.15 and 0.71 s (0.14 and 0.81 s before the preconditioned solver below,
 at a weaker γ).
 
-**Adaptive quadric support (an option, `setAdaptiveSupport (true)`, `-adaptive_support 1`;
-not yet the default).** Each vertex's quadric is fitted over its three graph rings instead of
+**Adaptive quadric support (the default since these measurements; `setAdaptiveSupport
+(false)`, `-adaptive_support 0` for two rings everywhere).** Each vertex's quadric is fitted over its three graph rings instead of
 two where that wider fit agrees with the two-ring one (the two fits' surfaces, evaluated under
 the two-ring points, within √6 × 2σ̂ in root-sum-square: an intersection of confidence
 intervals, as in Katkovnik's LPA-ICI), so that smooth parts average more noise and edges, thin
@@ -572,27 +572,28 @@ three rings everywhere on a noisy sphere (three rings 33% better there) and a co
 PU-GAN clouds at 10,000 points, `evaluate pugan --sizes 10000 --no-risk`, whose seeds differ
 from the table's: Tikhonov's defaults 0.871 (39 clouds ahead of every peer) → 0.875 (37), TV's
 0.939 (34) → 0.854 (36) over the best peer). The γ for it was then chosen on the calibration set
-kept apart (`calibrate_gamma --sizes 10000 --no-risk`, with and without `--adaptive`; 32 clouds:
+kept apart (`calibrate_gamma --sizes 10000 --no-risk`, with and without `--two-ring`; 32 clouds:
 the six meshes, the sphere and the cube at σ = 0.5, 1, 2, 3%; error over the best of both
 sweeps, geometric mean): two rings at their rule 1.150 (Tikhonov) and 1.196 (TV); adaptive
 support at ¼ / 0.35 / ½ / 0.7 / 1 × the rule 1.092 / 1.089 / 1.092 / 1.103 / 1.127 (Tikhonov)
-and 1.095 / 1.088 / 1.086 / 1.093 / 1.113 (TV). The option therefore halves the derived γ. At
+and 1.095 / 1.088 / 1.086 / 1.093 / 1.113 (TV). The adaptive support therefore halves the derived γ. At
 ½ × against two rings at the rule, per shape (geometric mean over its four noise levels):
 block 0.98, joint 0.94, part-Lp 0.94, casting 1.06, dragon 1.03, bunny 0.99, sphere 0.86, cube
 0.83 for Tikhonov; 0.95, 0.93, 0.92, 0.96, 1.00, 0.94, 0.77, 0.83 for TV.
 
-On section 2's clouds (`build/bench/evaluate pugan --sizes 10000,50000 --no-risk --adaptive`:
-the same seeds, the peers' rows identical to the table's), over the best of MLS, jet and
+On section 2's clouds (section 2's table is measured with it; `build/bench/evaluate pugan
+--sizes 10000,50000 --no-risk --two-ring` gives the two-ring rows; the same seeds, the peers'
+rows identical), over the best of MLS, jet and
 bilateral smoothing per cloud, each at its best setting for that cloud (clouds where it beats
 every peer in brackets):
 
 | geometric mean over the best peer | 10,000 points | 50,000 points | all 96 |
 |---|---|---|---|
-| Tikhonov, defaults (two rings) | 0.871 (39) | 0.873 (35) | 0.872 (74) |
-| **Tikhonov, adaptive support** | **0.811 (39)** | **0.692 (43)** | **0.749 (82)** |
+| Tikhonov, two rings (the previous default) | 0.871 (39) | 0.873 (35) | 0.872 (74) |
+| **Tikhonov, adaptive support (the default)** | **0.811 (39)** | **0.692 (43)** | **0.749 (82)** |
 | the same, best of ¼–4 × γ per cloud (an oracle) | 0.768 (40) | 0.640 (46) | 0.701 (86) |
-| TV, defaults (two rings) | 0.940 (34) | 0.959 (30) | 0.949 (64) |
-| **TV, adaptive support** | **0.797 (39)** | **0.692 (43)** | **0.743 (82)** |
+| TV, two rings (the previous default) | 0.940 (34) | 0.959 (30) | 0.949 (64) |
+| **TV, adaptive support (the default)** | **0.797 (39)** | **0.692 (43)** | **0.743 (82)** |
 | the same, best of ¼–4 × γ per cloud (an oracle) | 0.753 (41) | 0.649 (46) | 0.699 (87) |
 
 Mean P2M (×10⁴) at 1 / 2 / 3%: Tikhonov 0.51 / 1.18 / 1.94 at 10,000 points and 0.09 / 0.43 /
@@ -603,22 +604,24 @@ points and 1–2%, whose detail the noise estimate reads as noise (above). These
 the goal of this section (ahead of the best peer on 80% of the clouds, at 0.9 × its error or
 less) with either filter: 85% of the clouds, 0.75 ×. Near the edges of the noisy cube of the
 edge test (30,000 points, σ = 0.01, points within 0.1 of an edge) it gives 0.00328 (Tikhonov)
-and 0.00320 (TV), against 0.00375 and 0.00352 by default: TV stays the sharper. The price is
+and 0.00320 (TV), against 0.00375 and 0.00352 over two rings: TV stays the sharper. The price is
 time, the second fit of every vertex: 0.21 s and 0.25 s per 10,000-point cloud against 0.10 s
 and 0.15 s (Tikhonov, TV; idle runs), 1.1 s and 1.5 s per 50,000-point cloud against 0.39 s and
 0.71 s (measured partly beside a build). Where it does not help: the raw bunny scans (section
-3; `evaluate bunny --no-risk --adaptive`), whose best γ is 4 × the rule's, lose a little with
-the halved γ: Tikhonov 0.0787 / 0.0774 / 0.0985 mm against 0.0780 / 0.0765 / 0.0974 by default,
-TV 0.0790 / 0.0777 / 0.0990 against 0.0788 / 0.0772 / 0.0978. On a million points
+3, measured with it; `evaluate bunny --no-risk --two-ring` for two rings), whose best γ is 4 ×
+the rule's, lose a little with the halved γ: Tikhonov 0.0787 / 0.0774 / 0.0985 mm against
+0.0780 / 0.0765 / 0.0974 over two rings, TV 0.0790 / 0.0777 / 0.0990 against 0.0788 / 0.0772 /
+0.0978. On a million points
 (`build/bench/bench_smoothing 1000000`, σ = 1%, one run) the cube gains (Tikhonov 0.00091
 against 0.00104, TV 0.00106 against 0.00132; MLS at its best radius 0.00113) and the sphere
 is mixed (Tikhonov 0.00044 against 0.00038, where twice the rule's γ gives 0.00024: the halved
 γ is too weak there; TV 0.00088 against 0.00096), at 1.6 × and 1.1–1.2 × the time (sphere:
 22.8 s against 14.3 s for Tikhonov, 33.2 s against 29.6 s for TV; 13.9 × and 20.2 × the graph
 build, which took 1.64 s in this run against 0.86 s in the earlier one above: this machine's
-speed varies between runs). It is not yet the default: the factor ½ was fitted at 10,000 points only (the
-calibration set at 20,000 and 50,000 points is still to run with it), and making it the
-default means regenerating this whole page, whose bunny scans and sequences change with it.
+speed varies between runs). On these figures it became the default, and this page was
+regenerated with it (sections 2, 3 and 6; sections 1 and 4 do not use the quadrics). The
+factor ½ was fitted at 10,000 points only: the calibration set at 20,000 and 50,000 points is
+still to run with it.
 
 On a million points (`build/bench/bench_smoothing 1000000`, noisy unit sphere, σ = 1%, the
 noise 2.6 spacings) the blend costs: Tikhonov 0.00247 against 0.00239 with the own quadric, TV

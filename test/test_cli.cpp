@@ -1089,37 +1089,48 @@ TEST (Cli, TemporalStepWritesEveryFrameToTheFolderAsTheLibraryDoes)
       EXPECT_GT (moved, origin.size () / 2);
     }
   }
-  // With motion compensation: the library's result with it on, and not the default's.
-  {
-    std::vector<std::string> args = names;
-    fs::create_directories (dir / "moved");
-    args.insert (args.end (), {"moved", "-temporal", "motion_compensation=1"});
-    const ToolRun run = runTool (dir, args);
-    ASSERT_EQ (run.code, 0) << describe (args, run);
-    EXPECT_NE (run.err.find ("motion compensation on"), std::string::npos) << run.err;
-    pcl_graph_denoise::GraphSequenceSmoothing<pcl::PointXYZ> sequence;
-    std::vector<pcl::PointCloud<pcl::PointXYZ>::Ptr> xyz, expected, plain;
-    for (const auto &frame : frames)
-    {
-      xyz.emplace_back (new pcl::PointCloud<pcl::PointXYZ>);
-      pcl::fromPCLPointCloud2 (frame, *xyz.back ());
-    }
-    ASSERT_TRUE (sequence.filter (xyz, plain));
-    sequence.setMotionCompensation (true);
-    ASSERT_TRUE (sequence.filter (xyz, expected));
-    for (std::size_t t = 0; t < 3; ++t)
-    {
-      const PCLPointCloud2 output = load (dir / "moved" / names[t]);
-      ASSERT_EQ (size (output), expected[t]->size ());
-      std::size_t differ = 0;
-      for (std::size_t i = 0; i < size (output); ++i)
-      {
-        EXPECT_EQ (coordinate (output, i, "x"), (*expected[t])[i].x) << "frame " << t << ", point " << i;
-        differ += coordinate (output, i, "x") != (*plain[t])[i].x;
-      }
-      EXPECT_GT (differ, 0u) << "frame " << t;
-    }
-  }
+  // An option of the sequence (motion compensation) and one of its smoother (the quadrics
+  // over two rings only): the library's result with it, and not the default's.
+  const auto optionReachesTheLibrary =
+      [&] (const std::string &folder, const std::string &option,
+           const std::function<void (pcl_graph_denoise::GraphSequenceSmoothing<pcl::PointXYZ> &)> &set) {
+        std::vector<std::string> args = names;
+        fs::create_directories (dir / folder);
+        args.insert (args.end (), {folder, "-temporal", option});
+        const ToolRun run = runTool (dir, args);
+        ASSERT_EQ (run.code, 0) << describe (args, run);
+        pcl_graph_denoise::GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+        std::vector<pcl::PointCloud<pcl::PointXYZ>::Ptr> xyz, expected, plain;
+        for (const auto &frame : frames)
+        {
+          xyz.emplace_back (new pcl::PointCloud<pcl::PointXYZ>);
+          pcl::fromPCLPointCloud2 (frame, *xyz.back ());
+        }
+        ASSERT_TRUE (sequence.filter (xyz, plain));
+        set (sequence);
+        ASSERT_TRUE (sequence.filter (xyz, expected));
+        for (std::size_t t = 0; t < 3; ++t)
+        {
+          const PCLPointCloud2 output = load (dir / folder / names[t]);
+          ASSERT_EQ (size (output), expected[t]->size ());
+          std::size_t differ = 0;
+          for (std::size_t i = 0; i < size (output); ++i)
+          {
+            EXPECT_EQ (coordinate (output, i, "x"), (*expected[t])[i].x) << option << ", frame " << t << ", point " << i;
+            differ += coordinate (output, i, "x") != (*plain[t])[i].x;
+          }
+          EXPECT_GT (differ, 0u) << option << ", frame " << t;
+        }
+        if (option == "motion_compensation=1")
+          EXPECT_NE (run.err.find ("motion compensation on"), std::string::npos) << run.err;
+      };
+  optionReachesTheLibrary ("moved", "motion_compensation=1",
+                           [] (auto &sequence) { sequence.setMotionCompensation (true); });
+  optionReachesTheLibrary ("two_rings", "adaptive_support=0", [] (auto &sequence) {
+    auto smoother = std::make_shared<pcl_graph_denoise::GraphTikhonovSmoothing<pcl::PointXYZ>> ();
+    smoother->setAdaptiveSupport (false);
+    sequence.setSmoother (smoother);
+  });
   // k2 = 0: each frame is the static filter's result (-tikhonov on the file alone).
   std::vector<std::string> args = names;
   args.insert (args.end (), {"alone", "-temporal", "k2=0"});
@@ -1241,8 +1252,8 @@ TEST (Cli, LocalSurfaceReachesTheFilter)
 
 TEST (Cli, AdaptiveSupportReachesTheFilter)
 {
-  // -adaptive_support 1 gives the library's result with setAdaptiveSupport (true), 0 and
-  // no value its default (off); the two differ, and the help tells the default.
+  // -adaptive_support 0 gives the library's result with setAdaptiveSupport (false), 1 and
+  // no value its default (on); the two differ, and the help tells the default.
   const fs::path dir = testFolder ();
   const PCLPointCloud2 input = sphereFrames ()[0];
   savePcd (dir / "in.pcd", input);
@@ -1252,15 +1263,15 @@ TEST (Cli, AdaptiveSupportReachesTheFilter)
   for (const std::string value : {"", "0", "1"})
   {
     pcl_graph_denoise::GraphTikhonovSmoothing<pcl::PointXYZ> filter;
-    if (value == "1")
-      filter.setAdaptiveSupport (true);
+    if (value == "0")
+      filter.setAdaptiveSupport (false);
     std::vector<std::string> args = {"in.pcd", "out.pcd", "-tikhonov"};
     if (!value.empty ())
       args.insert (args.end (), {"-adaptive_support", value});
     y[value] = toolMatchesLibrary (dir, args, filter, xyz);
     ASSERT_FALSE (y[value].empty ());
   }
-  EXPECT_EQ (y[""], y["0"]);
+  EXPECT_EQ (y[""], y["1"]);
   EXPECT_NE (y["1"], y["0"]);
   EXPECT_EQ (runTool (dir, {"in.pcd", "out.pcd", "-tikhonov", "-adaptive_support", "maybe"}).code, 2);
   const ToolRun help = runTool (dir, {"-h"});
@@ -1268,7 +1279,7 @@ TEST (Cli, AdaptiveSupportReachesTheFilter)
   const std::size_t from = help.out.find ("  -adaptive_support 0|1");
   ASSERT_NE (from, std::string::npos) << help.out;
   const std::size_t to = help.out.find ("\n  -", from + 1);
-  EXPECT_NE (help.out.substr (from, to - from).find ("(default: 0)"), std::string::npos) << help.out;
+  EXPECT_NE (help.out.substr (from, to - from).find ("(default: 1)"), std::string::npos) << help.out;
 }
 
 TEST (Cli, SmoothingReportsEachPassGraphAsItIsBuilt)

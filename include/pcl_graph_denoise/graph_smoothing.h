@@ -179,14 +179,14 @@ public:
 
   /** \brief The surface each point moves onto with normal displacement on.
    *  LocalSurface::BLENDED_QUADRICS (default): around every vertex, a quadric height
-   *  field fitted over two graph rings of the smoothed points (or three:
-   *  setAdaptiveSupport), robustly re-weighted by the estimated noise level so that the
+   *  field fitted over two graph rings of the smoothed points (three where that agrees:
+   *  setAdaptiveSupport, on by default), robustly re-weighted by the estimated noise level so that the
    *  far side of a thin wall or the other face at an edge does not pull it; each point moves onto the weighted mean of the quadrics of
    *  its two rings (weights: its distance to each patch's centre and to its surface), so
    *  that the overlapping fits average out their own noise (core::quadricDisplacement
    *  with core::QuadricProjection::BLENDED). LocalSurface::QUADRIC: onto its own vertex's
    *  quadric only, the previous default. With either, the data-derived gamma is half the
-   *  paper rule's (the fits remove noise themselves; a quarter with setAdaptiveSupport)
+   *  paper rule's (the fits remove noise themselves; a quarter with setAdaptiveSupport on)
    *  times the detail term, and for TV the noise term (core::refinedGammaFactor).
    *  LocalSurface::PLANE: the plane through the smoothed point, normal from the fit of the smoothed points over two rings
    *  (core::normalDisplacement). All measured in docs/evaluation.md. */
@@ -197,15 +197,15 @@ public:
   inline LocalSurface
   getLocalSurface () const { return local_surface_; }
 
-  /** \brief Fit each quadric over a support chosen per vertex (default false): over
+  /** \brief Fit each quadric over a support chosen per vertex (default true): over
    *  two graph rings, and over three where that wider fit agrees with the two-ring one
    *  (their surfaces, under the two-ring points, within 2 sqrt(6) noise levels in
    *  root-sum-square: core::QuadricSupport::ADAPTIVE), so that smooth parts average more
    *  noise while edges, thin parts and fine detail keep the narrow fit. false = two rings
-   *  everywhere. The data-derived gamma is halved again with it (the wider fits remove
-   *  more noise). Applies to the quadric surfaces only (setLocalSurface; no effect with
-   *  LocalSurface::PLANE or normal displacement off). 1.1-2.8 times the smoothing's
-   *  time; docs/evaluation.md section 5 has its measurements. */
+   *  everywhere, in about half the smoothing's time (0.4-0.9 times). The data-derived gamma is halved again with it (the wider fits
+   *  remove more noise). Applies to the quadric surfaces only (setLocalSurface; no effect
+   *  with LocalSurface::PLANE or normal displacement off). docs/evaluation.md section 5
+   *  has its measurements. */
   inline void
   setAdaptiveSupport (bool adaptive) { adaptive_support_ = adaptive; }
 
@@ -369,7 +369,7 @@ protected:
   int graph_iterations_ = 1;      ///< setGraphIterations
   bool normal_displacement_ = true;                      ///< setNormalDisplacement
   LocalSurface local_surface_ = LocalSurface::BLENDED_QUADRICS;  ///< setLocalSurface
-  bool adaptive_support_ = false;                        ///< setAdaptiveSupport
+  bool adaptive_support_ = true;                         ///< setAdaptiveSupport
   bool shrinkage_correction_ = true;                     ///< setShrinkageCorrection
   double tolerance_;              ///< setTolerance
   int max_iterations_;            ///< setMaximumIterations
