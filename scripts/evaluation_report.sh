@@ -270,10 +270,11 @@ filters give 0.0075 (Tikhonov) and 0.0060 (TV); the plane defaults gave 0.0045 a
 quadric defaults 0.0036 and 0.0036, the blended quadrics (end of this section) 0.0034 and 0.0035,
 with the detail term of the derived γ (end of this section) 0.00375 and 0.00402 (TV no longer
 sharper: the detail term reads the cube's flat faces and raises γ, TV's more, which rounds the
-edges a little more while the faces get flatter), and with TV's noise term (the default now, end
-of this section; σ̂ is a quarter of a spacing there, so TV's γ is halved) 0.00375 and **0.00352**
+edges a little more while the faces get flatter), with TV's noise term (end of this section;
+σ̂ is a quarter of a spacing there, so TV's γ is halved) 0.00375 and 0.00352, and with the
+adaptive quadric support (the default now, end of this section) 0.00328 and **0.00320**
 (`ctest -R TotalVariationKeepsCubeEdges`, which asserts it): all sharper than the paper's TV,
-and the default TV sharper than the default Tikhonov again.
+and the default TV sharper than the default Tikhonov.
 
 The default γ (γ · mean degree = 20 (σ̂/s)^1.5 for Tikhonov, γ = 10 σ̂ / mean Σ√w for TV, both
 halved with the quadric) comes from the paper's filters on spheres and cubes.
@@ -605,9 +606,10 @@ the goal of this section (ahead of the best peer on 80% of the clouds, at 0.9 ×
 less) with either filter: 85% of the clouds, 0.75 ×. Near the edges of the noisy cube of the
 edge test (30,000 points, σ = 0.01, points within 0.1 of an edge) it gives 0.00328 (Tikhonov)
 and 0.00320 (TV), against 0.00375 and 0.00352 over two rings: TV stays the sharper. The price is
-time, the second fit of every vertex: 0.21 s and 0.25 s per 10,000-point cloud against 0.10 s
-and 0.15 s (Tikhonov, TV; idle runs), 1.1 s and 1.5 s per 50,000-point cloud against 0.39 s and
-0.71 s (measured partly beside a build). Where it does not help: the raw bunny scans (section
+time, the second fit of every vertex: 0.22 s and 0.26 s per 10,000-point cloud against 0.10 s
+and 0.15 s (Tikhonov, TV; idle runs: section 2's table against the previous one), 1.0 s and
+1.3 s per 50,000-point cloud against 0.39 s and 0.71 s, and on the bunny scans 0.45–0.62 s
+against 0.18–0.23 s. Where it does not help: the raw bunny scans (section
 3, measured with it; `evaluate bunny --no-risk --two-ring` for two rings), whose best γ is 4 ×
 the rule's, lose a little with the halved γ: Tikhonov 0.0787 / 0.0774 / 0.0985 mm against
 0.0780 / 0.0765 / 0.0974 over two rings, TV 0.0790 / 0.0777 / 0.0990 against 0.0788 / 0.0772 /
@@ -638,7 +640,8 @@ whatever the graph's k) give a covariance whose
 smallest eigenvalue, less σ̂², is the squared thickness t of the patch; a surface of curvature κ
 has t ≈ κR² / (4√3), and 1/L is the mean of t / R² (a sphere of radius r reads L = 4√3 r,
 within 15% from 10,000 to 50,000 points, unit-free: test `NoiseLevel.MeasuresHowTheSurfaceBends`).
-With the quadric surfaces the halved rule is multiplied by L / (40 s) for Tikhonov and
+With the quadric surfaces the halved rule (halved again by the adaptive support, the default
+since the end of this section) is multiplied by L / (40 s) for Tikhonov and
 L / (30 s) for TV, s the mean k-NN distance, clamped to [⅛, 16] (`core::detailGammaFactor`); the
 plane surface and the paper's filters keep the rule. Both constants and the exponent of L / s
 come from a one-off sweep (the default filters at ⅛–16 × in steps of √2 on the calibration set's

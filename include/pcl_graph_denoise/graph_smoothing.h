@@ -21,7 +21,8 @@ namespace pcl_graph_denoise {
 enum class LocalSurface
 {
   PLANE,            ///< the plane fitted to the smoothed points over two graph rings
-  QUADRIC,          ///< a quadric height field fitted robustly to the smoothed points over two rings
+  QUADRIC,          ///< a quadric height field fitted robustly to the smoothed points over two
+                    ///< rings (or three: GraphSmoothing::setAdaptiveSupport)
   BLENDED_QUADRICS  ///< the weighted mean of the quadrics of the point's two rings (default)
 };
 
