@@ -606,10 +606,12 @@ the goal of this section (ahead of the best peer on 80% of the clouds, at 0.9 ×
 less) with either filter: 85% of the clouds, 0.75 ×. Near the edges of the noisy cube of the
 edge test (30,000 points, σ = 0.01, points within 0.1 of an edge) it gives 0.00328 (Tikhonov)
 and 0.00320 (TV), against 0.00375 and 0.00352 over two rings: TV stays the sharper. The price is
-time, the second fit of every vertex: 0.22 s and 0.26 s per 10,000-point cloud against 0.10 s
-and 0.15 s (Tikhonov, TV; idle runs: section 2's table against the previous one), 1.0 s and
-1.3 s per 50,000-point cloud against 0.39 s and 0.71 s, and on the bunny scans 0.45–0.62 s
-against 0.18–0.23 s. Where it does not help: the raw bunny scans (section
+time, the second fit of every vertex: in the same runs of `build/bench/bench_smoothing`
+(a sphere and a cube of 100,000 and of 1,000,000 points) 1.26–1.61 × the two-ring time for
+Tikhonov and 0.94–1.17 × for TV. (Sections 2, 3 and 6 do not compare across runs: this machine
+ran the regenerated tables about twice as slowly as the previous ones, the peers too, e.g. MLS
+0.075 s per 10,000-point cloud against 0.034 s and 0.28 s per bunny scan against 0.11 s.)
+Where it does not help: the raw bunny scans (section
 3, measured with it; `evaluate bunny --no-risk --two-ring` for two rings), whose best γ is 4 ×
 the rule's, lose a little with the halved γ: Tikhonov 0.0787 / 0.0774 / 0.0985 mm against
 0.0780 / 0.0765 / 0.0974 over two rings, TV 0.0790 / 0.0777 / 0.0990 against 0.0788 / 0.0772 /
@@ -754,18 +756,24 @@ TAIL
 What the numbers say:
 
 - With motion compensation the temporal filter lowers the error against the static filter
-  frame by frame, at the same γ, by 25–32% on the moving cube, 37–44% on the rotating sphere
-  and 31–45% on the waving plane, at both speeds, every noise level and with both filters:
+  frame by frame, at the same γ, by 26–32% on the moving cube, 33–39% on the rotating sphere
+  and 35–41% on the waving plane, at both speeds, every noise level and with both filters:
   the issue's target (25% on every sequence) holds, as it does with each filter at its own
-  defaults (28–30% on the cube, at least 28% everywhere) and at its own best γ (at least
-  29%). With the detail term alone it had slipped at the same γ for TV on the cube (23–25%:
+  defaults (26–29% on the cube, at least 26% everywhere) and at its own best γ (at least
+  27%). With the detail term alone it had slipped at the same γ for TV on the cube (23–25%:
   the static γ both runs share is the frame's, and the detail term raised it on the cube's
   flat faces); TV's noise term of section 5 lowers it there (σ̂ is below half a spacing) and
-  the cube gains 31–32% again.
+  the cube gained 31–32% again (30–32% now).
+- The adaptive quadric support of section 5 (the default since this table was last
+  regenerated) lowers both columns on every sequence: against the run before it, over two
+  rings, the static filter's error by 0.80 × and the temporal filter's by 0.82 × (geometric
+  means over the 36 rows at the defaults); the gains over the static filter are therefore a
+  little smaller on the sphere (37–44% before). Its time: the speed table (whose figures do not
+  compare with the previous run's, section 5).
 - Without it (the paper's graph, the default) the gain depends on how far the surface moves
   between frames against the noise: the sphere, whose surface stays in place, gains as much
-  (40–46%), but at speed 1 the temporal links average surfaces that are no longer in the same
-  place and the error rises (cube down to −29%, plane down to −234%; with the own quadric, the
+  (40–41%), but at speed 1 the temporal links average surfaces that are no longer in the same
+  place and the error rises (cube down to −31%, plane down to −269%; with the own quadric, the
   default before the blended quadrics of section 5, −56% and −299%).
 - How the compensation was reached (one-off runs with the own quadric, on these sequences, 20 frames of 5,000
   points, Tikhonov at the derived γ of frame 0; gain over frame by frame for the plane at
@@ -803,11 +811,12 @@ What the numbers say:
   window, which is what makes the streaming result equal the batch one, and the compensation
   adds the offsets of the two other frames.
 - The fixed Kinect: the static filter frame by frame leaves consecutive frames slightly further
-  apart than they came (median 3.59 → 3.86 mm: each frame is smoothed towards its own
-  surface), the temporal filter brings them to 1.93 mm (TV 1.90 mm; with the blended quadrics
-  before the detail term 1.64 and 1.59 mm), at 6.4× the time for Tikhonov (idle machine).
-  TV (1.80 mm) converges there in 46 s with the preconditioned solver of section 5 (with the
-  detail term alone and the previous solver it stopped at its limit of 500 iterations, 84 s).
+  apart than they came (median 3.59 → 3.85 mm: each frame is smoothed towards its own
+  surface), the temporal filter brings them to 1.91 mm (TV 1.78 mm; over two rings 1.93 and
+  1.80 mm; with the blended quadrics before the detail term 1.64 and 1.59 mm), at 5.2× the time
+  for Tikhonov. The times of this table and the TV row of the speed table were measured beside
+  a CI build. TV converges with the preconditioned solver of section 5 (with the detail term
+  alone and the previous solver it stopped at its limit of 500 iterations).
 
 ## Not yet in this report
 

@@ -634,7 +634,7 @@ usage (const std::string &program)
     << "  -adaptive_support 0|1   fit each quadric over three graph rings where that agrees\n"
     << "                          with the two-ring fit (within 2 sqrt(6) noise levels), else\n"
     << "                          over two, and halve the derived gamma; 0: two rings, in\n"
-    << "                          0.4-0.9x the time; quadric local surfaces only (default: "
+    << "                          0.6-1.0x the time; quadric local surfaces only (default: "
     << adaptive << ")\n"
     << "  -shrinkage_correction 0|1\n"
     << "                          twicing against the shrinkage of curved surfaces (default: "

@@ -203,7 +203,7 @@ public:
    *  (their surfaces, under the two-ring points, within 2 sqrt(6) noise levels in
    *  root-sum-square: core::QuadricSupport::ADAPTIVE), so that smooth parts average more
    *  noise while edges, thin parts and fine detail keep the narrow fit. false = two rings
-   *  everywhere, in about half the smoothing's time (0.4-0.9 times). The data-derived gamma is halved again with it (the wider fits
+   *  everywhere, in 0.6-1.0 times the smoothing's time. The data-derived gamma is halved again with it (the wider fits
    *  remove more noise). Applies to the quadric surfaces only (setLocalSurface; no effect
    *  with LocalSurface::PLANE or normal displacement off). docs/evaluation.md section 5
    *  has its measurements. */
