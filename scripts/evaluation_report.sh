@@ -622,7 +622,10 @@ is mixed (Tikhonov 0.00044 against 0.00038, where twice the rule's γ gives 0.00
 γ is too weak there; TV 0.00088 against 0.00096), at 1.6 × and 1.1–1.2 × the time (sphere:
 22.8 s against 14.3 s for Tikhonov, 33.2 s against 29.6 s for TV; 13.9 × and 20.2 × the graph
 build, which took 1.64 s in this run against 0.86 s in the earlier one above: this machine's
-speed varies between runs). On these figures it became the default, and this page was
+speed varies between runs). At 100,000 points (`bench_smoothing 100000`, one run) the same:
+the cube gains (Tikhonov 0.00155 against 0.00168, TV 0.00164 against 0.00201), the sphere
+loses for Tikhonov (0.00081 against 0.00067) and gains for TV (0.00112 against 0.00135): on a
+dense smooth sphere the halved γ is too weak for Tikhonov. On these figures it became the default, and this page was
 regenerated with it (sections 2, 3 and 6; sections 1 and 4 do not use the quadrics). The
 factor ½ was fitted at 10,000 points only: the calibration set at 20,000 and 50,000 points is
 still to run with it.
