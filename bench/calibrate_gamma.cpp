@@ -12,17 +12,20 @@
  * sphere and the cube.
  *
  *   calibrate_gamma [--data DIR] [--only NAME,NAME] [--sizes N,N] [--two-ring] [--no-risk]
+ *                   [--default-only]
  *   calibrate_gamma --noise-table
  *
  * --only: the shapes whose names contain one of the names; --sizes: of 10000, 20000, 50000
  * (the seeds stay those of the full run); --two-ring: the filters with
  * setAdaptiveSupport (false); --no-risk: without the risk estimate's runs (its figures
- * then read nan).
+ * then read nan); --default-only: no sweep, each cloud at the default gamma only, and the
+ * set's geometric mean error per filter (to compare two builds or settings).
  *
  * For every cloud, both filters run at multiples m (1/4 to 16, steps of sqrt 2) of the
- * current default gamma (a "raw" line per cloud and filter gives the errors of the
- * sweep); the best m is fitted as log m = a + b log r with r = estimated noise / spacing
- * (the quantity the rules scale with), and the fitted rule is run to report, over the
+ * current default gamma (a "raw" line per cloud and filter: filter, shape, points, true
+ * noise, estimated noise, spacing, detail length over spacing as the detail term reads it,
+ * then the errors of the sweep); the best m is fitted as log m = a + b log r with
+ * r = estimated noise / spacing (the quantity the rules scale with), and the fitted rule is run to report, over the
  * set, the geometric mean of its error over the best of the sweep (1 = always the best)
  * next to the current rule's and to GammaSelection::RISK_ESTIMATE's (its chosen multiple
  * and error over the best in each cloud's line).
@@ -52,16 +55,41 @@ struct Sample
   double best = 0.0, best_m = 0.0;
   double gamma = 0.0;             // the current default gamma
   double noise = 0.0, spacing = 0.0;  // estimated noise, spacing (sigma * sqrt 2)
+  double detail = 0.0;            // detail length over spacing, 1 / (curvature * spacing)
   double risk_error = 0.0, risk_m = 0.0;  // GammaSelection::RISK_ESTIMATE: error, multiple
 };
 
-// 1/4 to 16 in steps of sqrt 2; the default (1) is kMultiples[kDefault].
-const std::vector<double> kMultiples = {0.25, 0.354, 0.5, 0.707, 1.0, 1.414, 2.0,
-                                        2.828, 4.0, 5.657, 8.0, 11.31, 16.0};
-constexpr std::size_t kDefault = 4;
+// 1/4 to 16 in steps of sqrt 2; the default (1) is multiples[default_index]
+// (--default-only: the default alone).
+std::vector<double> multiples = {0.25, 0.354, 0.5, 0.707, 1.0, 1.414, 2.0,
+                                 2.828, 4.0, 5.657, 8.0, 11.31, 16.0};
+std::size_t default_index = 4;
 
 bool adaptive_support = true;   // not --two-ring
 bool with_risk = true;          // not --no-risk
+
+/** core::estimateNoise on `cloud` over the default k-NN graph, as the filters read it. */
+core::NoiseEstimate
+estimateOn (const Cloud &cloud)
+{
+  core::PointMatrix points (static_cast<Eigen::Index> (cloud.size ()), 3);
+  for (std::size_t i = 0; i < cloud.size (); ++i)
+    points.row (static_cast<Eigen::Index> (i)) = cloud[i].getVector3fMap ().transpose ();
+  const core::PointGraph graph = core::buildKnnGraph (points);
+  core::Signal3 f (points.rows (), 3);
+  for (Eigen::Index v = 0; v < points.rows (); ++v)
+    f.row (v) = points.row (graph.order[static_cast<std::size_t> (v)]).cast<double> ();
+  return core::estimateNoise (graph, f);
+}
+
+/** The detail length 1 / NoiseEstimate::curvature that core::detailGammaFactor reads on
+ *  `cloud`; 0 when not measured. */
+double
+detailLength (const Cloud &cloud)
+{
+  const double curvature = estimateOn (cloud).curvature;
+  return curvature > 0.0 ? 1.0 / curvature : 0.0;
+}
 
 template <typename Filter>
 Sample
@@ -77,8 +105,9 @@ sweep (const Cloud::Ptr &cloud, const std::function<double (const Cloud &)> &err
   s.noise = filter.getEstimatedNoise ();
   s.spacing = std::sqrt (2.0) * filter.getUsedSigma ();  // sigma = spacing / sqrt 2
   s.r = s.noise / s.spacing;
+  s.detail = detailLength (*cloud) / s.spacing;
   s.best = std::numeric_limits<double>::infinity ();
-  for (double m : kMultiples)
+  for (double m : multiples)
   {
     filter.setGamma (m * s.gamma);
     filter.filter (out);
@@ -126,15 +155,7 @@ printNoiseTable ()
     double residual = 0.0, measured = 0.0, level = 0.0;
     for (std::uint64_t seed : {1, 2, 3})
     {
-      const Cloud plane = synthetic::noisyPlane (n, r * spacing, seed);
-      core::PointMatrix points (static_cast<Eigen::Index> (n), 3);
-      for (std::size_t i = 0; i < n; ++i)
-        points.row (static_cast<Eigen::Index> (i)) = plane[i].getVector3fMap ().transpose ();
-      const core::PointGraph graph = core::buildKnnGraph (points);
-      core::Signal3 f (static_cast<Eigen::Index> (n), 3);
-      for (std::size_t v = 0; v < n; ++v)
-        f.row (static_cast<Eigen::Index> (v)) = points.row (graph.order[v]).cast<double> ();
-      const core::NoiseEstimate e = core::estimateNoise (graph, f);
+      const core::NoiseEstimate e = estimateOn (synthetic::noisyPlane (n, r * spacing, seed));
       residual += e.two_ring / spacing / 3.0;
       measured += e.spacing / spacing / 3.0;
       level += e.level / (r * spacing) / 3.0;
@@ -159,7 +180,7 @@ main (int argc, char **argv)
   std::string only;  // comma-separated substrings of the shape names to run
   std::string sizes = ",10000,20000,50000,";
   const char *usage = "usage: %s [--data DIR] [--only NAME,NAME] [--sizes N,N] [--two-ring] "
-                      "[--no-risk] | --noise-table\n";
+                      "[--no-risk] [--default-only] | --noise-table\n";
   for (int a = 1; a < argc; ++a)
   {
     const bool has_value = a + 1 < argc;
@@ -167,6 +188,8 @@ main (int argc, char **argv)
       adaptive_support = false;
     else if (!std::strcmp (argv[a], "--no-risk"))
       with_risk = false;
+    else if (!std::strcmp (argv[a], "--default-only"))
+      multiples = {1.0}, default_index = 0;
     else if (has_value && !std::strcmp (argv[a], "--data"))
       data = argv[++a];
     else if (has_value && !std::strcmp (argv[a], "--only"))
@@ -242,20 +265,35 @@ main (int argc, char **argv)
         std::printf ("%-32s %5zu noise %.3f r %.3f | best multiple: Tikhonov %g (%.3gx the default's "
                      "error; risk estimate %.3g: %.3gx), TV %g (%.3gx; risk estimate %.3g: %.3gx)\n",
                      shape.name.c_str (), n, noise, tikhonov.back ().r, tikhonov.back ().best_m,
-                     tikhonov.back ().error[kDefault] / tikhonov.back ().best, tikhonov.back ().risk_m,
+                     tikhonov.back ().error[default_index] / tikhonov.back ().best, tikhonov.back ().risk_m,
                      tikhonov.back ().risk_error / tikhonov.back ().best, tv.back ().best_m,
-                     tv.back ().error[kDefault] / tv.back ().best, tv.back ().risk_m,
+                     tv.back ().error[default_index] / tv.back ().best, tv.back ().risk_m,
                      tv.back ().risk_error / tv.back ().best);
         for (const Sample *sample : {&tikhonov.back (), &tv.back ()})
         {
-          std::printf ("raw %s %s %zu %g %g %g", sample == &tv.back () ? "tv" : "tikhonov",
-                       shape.name.c_str (), n, noise, sample->noise, sample->spacing);
+          std::printf ("raw %s %s %zu %g %g %g %g", sample == &tv.back () ? "tv" : "tikhonov",
+                       shape.name.c_str (), n, noise, sample->noise, sample->spacing, sample->detail);
           for (double e : sample->error)
             std::printf (" %g", e);
           std::printf ("\n");
         }
       }
 
+  if (multiples.size () == 1)
+  {
+    // --default-only: the set's error at the default gamma, to compare builds.
+    for (int which = 0; which < 2; ++which)
+    {
+      const auto &samples = which == 0 ? tikhonov : tv;
+      double log_error = 0.0;
+      for (const Sample &sample : samples)
+        log_error += std::log (sample.error[0]);
+      std::printf ("%s: default gamma, geometric mean error over %zu clouds %.6g\n",
+                   which == 0 ? "Tikhonov" : "TV", samples.size (),
+                   std::exp (log_error / double (samples.size ())));
+    }
+    return 0;
+  }
   for (int which = 0; which < 2; ++which)
   {
     const auto &samples = which == 0 ? tikhonov : tv;
@@ -281,7 +319,7 @@ main (int argc, char **argv)
         f.setGamma (m * samples[i].gamma);
         f.filter (out);
       }
-      log_current += std::log (samples[i].error[kDefault] / samples[i].best);
+      log_current += std::log (samples[i].error[default_index] / samples[i].best);
       log_risk += std::log (samples[i].risk_error / samples[i].best);
       log_fitted += std::log (of[i]->error (out) / samples[i].best);
     }
