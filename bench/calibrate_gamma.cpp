@@ -25,10 +25,11 @@
  * current default gamma (a "raw" line per cloud and filter: filter, shape, points, true
  * noise, estimated noise, spacing, detail length over spacing as the detail term reads it,
  * then the errors of the sweep); the best m is fitted as log m = a + b log r with
- * r = estimated noise / spacing (the quantity the rules scale with), and the fitted rule is run to report, over the
- * set, the geometric mean of its error over the best of the sweep (1 = always the best)
- * next to the current rule's and to GammaSelection::RISK_ESTIMATE's (its chosen multiple
- * and error over the best in each cloud's line).
+ * r = estimated noise / spacing (the quantity the rules scale with), and the fitted rule
+ * is run to report, over the set, the geometric mean of its error over the best of the
+ * sweep (1 = always the best) next to the current rule's and to
+ * GammaSelection::RISK_ESTIMATE's (its chosen multiple and error over the best in each
+ * cloud's line).
  */
 #include <pcl_graph_denoise/core/noise_level.h>
 #include <pcl_graph_denoise/graph_tikhonov_smoothing.h>
@@ -100,6 +101,7 @@ sweep (const Cloud::Ptr &cloud, const std::function<double (const Cloud &)> &err
   filter.setAdaptiveSupport (adaptive_support);
   Cloud out;
   filter.filter (out);
+  const double at_default = error (out);  // the run at m = 1
   Sample s;
   s.gamma = filter.getUsedGamma ();
   s.noise = filter.getEstimatedNoise ();
@@ -109,9 +111,14 @@ sweep (const Cloud::Ptr &cloud, const std::function<double (const Cloud &)> &err
   s.best = std::numeric_limits<double>::infinity ();
   for (double m : multiples)
   {
-    filter.setGamma (m * s.gamma);
-    filter.filter (out);
-    s.error.push_back (error (out));
+    if (m == 1.0)
+      s.error.push_back (at_default);
+    else
+    {
+      filter.setGamma (m * s.gamma);
+      filter.filter (out);
+      s.error.push_back (error (out));
+    }
     if (s.error.back () < s.best)
       s.best = s.error.back (), s.best_m = m;
   }
