@@ -74,16 +74,17 @@ constexpr double kSupportAgreement = 2.0;
  *  tangential spread of its two rings, about the reach of its one ring at c = 1/2). */
 constexpr double kBlendReach = 0.5;
 
+/** The quadric's basis at tangential coordinates (a, b), already divided by the patch
+ *  radius so that the normal equations stay well conditioned at any scale:
+ *  (a^2, ab, b^2, a, b, 1). */
 using Basis = Eigen::Matrix<double, 6, 1>;
 
-/** The quadric's basis at tangential coordinates (a, b), already divided by the patch
- *  radius so that the normal equations stay well conditioned at any scale. */
-inline Basis
-quadricBasis (double a, double b)
+/** The height q . basis(a, b), in scalars: a basis vector built on the stack and read
+ *  back as pairs stalled the loads of the hot loops. */
+inline double
+quadricHeight (const Basis &q, double a, double b)
 {
-  Basis phi;
-  phi << a * a, a * b, b * b, a, b, 1.0;
-  return phi;
+  return (q[0] * a + q[1] * b + q[3]) * a + (q[2] * b + q[4]) * b + q[5];
 }
 
 /** One vertex's local surface: a frame and the height field over it (17 doubles: a
@@ -95,7 +96,7 @@ struct Patch
   /** The first tangential axis divided by the patch radius (the second is normal x u);
    *  zero for a patch without extent. */
   Eigen::Vector3d u = Eigen::Vector3d::Zero ();
-  /** Height coefficients over quadricBasis; zero = the tangent plane through origin. */
+  /** Height coefficients over the basis; zero = the tangent plane through origin. */
   Basis q = Basis::Zero ();
   /** The largest squared (a^2 + b^2) of the points it was fitted to; negative: fewer
    *  than 3 points in the rings, no frame. */
@@ -127,7 +128,7 @@ struct Patch
       a *= pull;
       b *= pull;
     }
-    return quadricBasis (a, b).dot (q);
+    return quadricHeight (q, a, b);
   }
 
   /** The signed distance along the normal from p up to the surface, limited to
@@ -142,13 +143,96 @@ struct Patch
   }
 };
 
+/** A ring point in its patch's frame: tangential coordinates (over the patch radius)
+ *  and height along the normal. */
+struct Sample
+{
+  double a, b, h;
+};
+
+/** The weighted least-squares system of a quadric height field, sum_r w_r phi_r phi_r^T q
+ *  = sum_r w_r h_r phi_r over the basis, accumulated as its 15 distinct moments
+ *  sum w a^p b^q (p + q <= 4) and 6 right-hand moments sum w h a^p b^q (p + q <= 2): half
+ *  the work of the 6 x 6 outer products. */
+class QuadricSystem
+{
+public:
+  inline void
+  add (double w, const Sample &s)
+  {
+    const double wa = w * s.a, wb = w * s.b;
+    const double wa2 = wa * s.a, wab = wa * s.b, wb2 = wb * s.b;
+    const double wa3 = wa2 * s.a, wa2b = wa2 * s.b, wab2 = wab * s.b, wb3 = wb2 * s.b;
+    m_[0] += w;
+    m_[1] += wa;
+    m_[2] += wb;
+    m_[3] += wa2;
+    m_[4] += wab;
+    m_[5] += wb2;
+    m_[6] += wa3;
+    m_[7] += wa2b;
+    m_[8] += wab2;
+    m_[9] += wb3;
+    m_[10] += wa3 * s.a;
+    m_[11] += wa3 * s.b;
+    m_[12] += wa2b * s.b;
+    m_[13] += wab2 * s.b;
+    m_[14] += wb3 * s.b;
+    r_[0] += wa2 * s.h;
+    r_[1] += wab * s.h;
+    r_[2] += wb2 * s.h;
+    r_[3] += wa * s.h;
+    r_[4] += wb * s.h;
+    r_[5] += w * s.h;
+  }
+
+  /** The normal matrix over the basis (a^2, ab, b^2, a, b, 1). */
+  Eigen::Matrix<double, 6, 6>
+  matrix () const
+  {
+    // Moment indices: 1 0, a 1, b 2, a2 3, ab 4, b2 5, a3 6, a2b 7, ab2 8, b3 9, a4 10,
+    // a3b 11, a2b2 12, ab3 13, b4 14.
+    static constexpr int index[6][6] = {{10, 11, 12, 6, 7, 3}, {11, 12, 13, 7, 8, 4},
+                                        {12, 13, 14, 8, 9, 5}, {6, 7, 8, 3, 4, 1},
+                                        {7, 8, 9, 4, 5, 2},    {3, 4, 5, 1, 2, 0}};
+    Eigen::Matrix<double, 6, 6> m;
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 6; ++c)
+        m (r, c) = m_[index[r][c]];
+    return m;
+  }
+
+  Basis
+  rhs () const { return Basis (r_); }
+
+private:
+  double m_[15] = {};
+  double r_[6] = {};
+};
+
+/** Whether an LDLT factorisation of a 6 x 6 normal matrix has a reciprocal condition
+ *  number above 1e-10 as Eigen estimates it (rcond ()), the test of a usable fit. The
+ *  estimate costs several solves and is needed only when the pivots are far apart: the
+ *  matrix is positive semi-definite and Eigen pivots on the largest diagonal entry, so the
+ *  unit lower factor's entries are at most 1 in size, ||L||_1 <= 6, ||L^-1||_1 <= 2^5, and
+ *  the condition number is at most (6 x 32)^2 max|D| / min|D|: with min|D| > 1e-5 max|D|,
+ *  below 3.7e9, so the true reciprocal condition number and the estimate (never below
+ *  the true one) are above 2.7e-10. */
+bool
+wellConditioned (const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> &ldlt)
+{
+  const auto d = ldlt.vectorD ().cwiseAbs ();
+  if (d.minCoeff () > 1e-5 * d.maxCoeff ())
+    return true;
+  return ldlt.rcond () > 1e-10;
+}
+
 /** Fits vertex i's patch to the points of x over `ring` (its two rings, or three),
  *  robustly with a noise level > 0 (quadricDisplacement). `fitted`, when given: whether a
  *  quadric was fitted (else the patch is the plane, or invalid). */
 Patch
 fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i, double noise,
-          std::vector<Basis> &phi, std::vector<double> &height, std::vector<double> &weight,
-          bool *fitted = nullptr)
+          std::vector<Sample> &samples, std::vector<double> &weight, bool *fitted = nullptr)
 {
   if (fitted)
     *fitted = false;
@@ -166,17 +250,15 @@ fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i,
   patch.u = eig.eigenvectors ().col (2) / radius;  // normal x u: the middle axis / radius
   if (ring.size () < kQuadricMinimumRing)
     return patch;  // the plane through x_i
-  phi.resize (ring.size ());
-  height.resize (ring.size ());
+  samples.resize (ring.size ());
   weight.assign (ring.size (), 1.0);
   for (std::size_t r = 0; r < ring.size (); ++r)
   {
     const Eigen::Vector3d p = x.row (ring[r]).transpose ();
-    double a, b;
-    patch.coordinates (p, a, b);
-    phi[r] = quadricBasis (a, b);
-    height[r] = (p - patch.origin).dot (patch.normal);
-    patch.support = std::max (patch.support, a * a + b * b);
+    Sample &s = samples[r];
+    patch.coordinates (p, s.a, s.b);
+    s.h = (p - patch.origin).dot (patch.normal);
+    patch.support = std::max (patch.support, s.a * s.a + s.b * s.b);
   }
   const bool robust = noise > 0.0;
   Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt;
@@ -184,25 +266,22 @@ fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i,
   // between two sheets starts on its own side.
   for (int iteration = 0; iteration < (robust ? kRobustIterations : 1); ++iteration)
   {
+    // The weights first, in a loop of their own: a call to exp in the accumulating loop
+    // would spill its 21 sums around every call.
     if (robust)
-      for (std::size_t r = 0; r < ring.size (); ++r)
+      for (std::size_t r = 0; r < samples.size (); ++r)
       {
-        const double t = (height[r] - phi[r].dot (patch.q)) / noise;
+        const Sample &s = samples[r];
+        const double t = (s.h - quadricHeight (patch.q, s.a, s.b)) / noise;
         weight[r] = std::exp (-0.5 * t * t);
       }
-    Eigen::Matrix<double, 6, 6> normal_matrix = Eigen::Matrix<double, 6, 6>::Zero ();
-    Basis rhs = Basis::Zero ();
-    for (std::size_t r = 0; r < ring.size (); ++r)
-    {
-      // The full outer product: a fixed 6 x 6 that Eigen unrolls, several times faster
-      // than its generic rank update of a triangle.
-      normal_matrix.noalias () += (weight[r] * phi[r]) * phi[r].transpose ();
-      rhs += weight[r] * height[r] * phi[r];
-    }
-    ldlt.compute (normal_matrix);
-    if (ldlt.info () != Eigen::Success || !(ldlt.rcond () > 1e-10))
+    QuadricSystem system;
+    for (std::size_t r = 0; r < samples.size (); ++r)
+      system.add (weight[r], samples[r]);
+    ldlt.compute (system.matrix ());
+    if (ldlt.info () != Eigen::Success || !wellConditioned (ldlt))
       break;  // too few points keep weight: keep the last fit (or the plane)
-    const Basis solved = ldlt.solve (rhs);
+    const Basis solved = ldlt.solve (system.rhs ());
     if (!solved.allFinite ())
       break;
     patch.q = solved;
@@ -234,8 +313,8 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
   std::vector<Patch> patches (blend ? n : 0);
   detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
     std::vector<VertexIndex> ring;
-    std::vector<Basis> phi;
-    std::vector<double> height, weight;
+    std::vector<Sample> samples;
+    std::vector<double> weight;
     detail::TwoRing two_ring;
     for (std::size_t i = begin; i < end; ++i)
     {
@@ -243,14 +322,14 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
       if (support == QuadricSupport::THREE_RINGS)
         two_ring.grow (graph, ring);
       bool fitted = false;
-      Patch patch = fitPatch (x, ring, i, noise, phi, height, weight, &fitted);
+      Patch patch = fitPatch (x, ring, i, noise, samples, weight, &fitted);
       if (adaptive && fitted)
       {
         // The wider fit where its surface, under the narrower ring's points, stays
         // within the noise of the narrower one's.
         const std::size_t narrow_size = ring.size ();
         two_ring.grow (graph, ring);
-        const Patch wide = fitPatch (x, ring, i, noise, phi, height, weight);
+        const Patch wide = fitPatch (x, ring, i, noise, samples, weight);
         if (wide.valid ())
         {
           double sum = 0.0;

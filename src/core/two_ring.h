@@ -36,7 +36,9 @@ public:
       const VertexIndex j = graph.col[e];
       bound += 1 + (graph.row_ptr[j + 1] - graph.row_ptr[j]);
     }
-    int bits = 4;
+    // The table only ever grows: a vertex's three rings need a larger one than the next
+    // vertex's two, and reallocating it at every vertex cost more than the lookups.
+    int bits = std::max (bits_, 4);
     while ((std::uint64_t (1) << bits) < 2 * bound)
       ++bits;
     if (bits != bits_)
