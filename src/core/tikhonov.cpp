@@ -57,24 +57,37 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
   // r = f - A f = -2 gamma L f.
   applyA (x, q);
   r = f - q;
-  auto precondition = [&] () {
-    return detail::parallelSum<detail::Sum3> (n, threads, [&] (std::size_t begin, std::size_t end) {
-      detail::Sum3 rz;
-      for (std::size_t i = begin; i < end; ++i)
-      {
-        const double m = 1.0 / (1.0 + g2 * degree[i]);
-        for (int c = 0; c < 3; ++c)
-        {
-          z (i, c) = m * r (i, c);
-          rz.v[c] += r (i, c) * z (i, c);
-        }
-      }
-      return rz;
-    });
+  // The squared norm of r, and its preconditioned copy z with the dot products r . z.
+  struct Residual
+  {
+    double rr = 0.0;
+    detail::Sum3 rz;
+    Residual &
+    operator+= (const Residual &o)
+    {
+      rr += o.rr;
+      rz += o.rz;
+      return *this;
+    }
   };
-  detail::Sum3 rz = precondition ();
+  const auto preconditionRow = [&] (std::size_t i, Residual &sums) {
+    const double m = 1.0 / (1.0 + g2 * degree[i]);
+    for (int c = 0; c < 3; ++c)
+    {
+      sums.rr += r (i, c) * r (i, c);
+      z (i, c) = m * r (i, c);
+      sums.rz.v[c] += r (i, c) * z (i, c);
+    }
+  };
+  Residual sums = detail::parallelSum<Residual> (n, threads, [&] (std::size_t begin, std::size_t end) {
+    Residual partial;
+    for (std::size_t i = begin; i < end; ++i)
+      preconditionRow (i, partial);
+    return partial;
+  });
+  detail::Sum3 rz = sums.rz;
   p = z;
-  double residual = detail::frobenius (r, threads);
+  double residual = std::sqrt (sums.rr);
   report.residual = scale > 0.0 ? residual / scale : 0.0;
   report.converged = residual <= params.tolerance * scale;
   int it = 0;
@@ -84,18 +97,21 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
     double alpha[3];
     for (int c = 0; c < 3; ++c)
       alpha[c] = pq.v[c] > 0.0 ? rz.v[c] / pq.v[c] : 0.0;
-    residual = std::sqrt (
-        detail::parallelSum<double> (n, threads, [&] (std::size_t begin, std::size_t end) {
-          double rr = 0.0;
-          for (std::size_t i = begin; i < end; ++i)
-            for (int c = 0; c < 3; ++c)
-            {
-              x (i, c) += alpha[c] * p (i, c);
-              r (i, c) -= alpha[c] * q (i, c);
-              rr += r (i, c) * r (i, c);
-            }
-          return rr;
-        }));
+    // The step, the new residual and its preconditioned copy in one pass.
+    sums = detail::parallelSum<Residual> (n, threads, [&] (std::size_t begin, std::size_t end) {
+      Residual partial;
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          x (i, c) += alpha[c] * p (i, c);
+          r (i, c) -= alpha[c] * q (i, c);
+        }
+        preconditionRow (i, partial);
+      }
+      return partial;
+    });
+    residual = std::sqrt (sums.rr);
     ++it;
     report.residual = scale > 0.0 ? residual / scale : 0.0;
     report.converged = residual <= params.tolerance * scale;
@@ -103,11 +119,10 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
       params.progress (it, report.residual);
     if (report.converged)
       break;
-    const detail::Sum3 rz_new = precondition ();
     double beta[3];
     for (int c = 0; c < 3; ++c)
-      beta[c] = rz.v[c] > 0.0 ? rz_new.v[c] / rz.v[c] : 0.0;
-    rz = rz_new;
+      beta[c] = rz.v[c] > 0.0 ? sums.rz.v[c] / rz.v[c] : 0.0;
+    rz = sums.rz;
     detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i)
         for (int c = 0; c < 3; ++c)
