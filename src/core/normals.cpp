@@ -143,47 +143,84 @@ struct Patch
   }
 };
 
-/** A ring point in its patch's frame: tangential coordinates (over the patch radius)
- *  and height along the normal. */
-struct Sample
+/** The ring points of one fit in its patch's frame, as columns: tangential coordinates
+ *  (over the patch radius), height along the normal and weight. Padded with a
+ *  zero-weight point to an even count, so that QuadricSystem sums them two at a time. */
+struct Samples
 {
-  double a, b, h;
+  std::vector<double> a, b, h, w;
+  std::size_t count = 0;  ///< the points, without the padding
+
+  void
+  resize (std::size_t n)
+  {
+    count = n;
+    const std::size_t padded = n + (n & 1);
+    a.resize (padded);
+    b.resize (padded);
+    h.resize (padded);
+    w.resize (padded);
+    a.back () = b.back () = h.back () = 0.0;  // the padding, if any
+    std::fill (w.begin (), w.end (), 1.0);
+    w.back () = n & 1 ? 0.0 : 1.0;
+  }
+
+  std::size_t
+  padded () const { return a.size (); }
 };
 
 /** The weighted least-squares system of a quadric height field, sum_r w_r phi_r phi_r^T q
- *  = sum_r w_r h_r phi_r over the basis, accumulated as its 15 distinct moments
- *  sum w a^p b^q (p + q <= 4) and 6 right-hand moments sum w h a^p b^q (p + q <= 2): half
- *  the work of the 6 x 6 outer products. */
+ *  = sum_r w_r h_r phi_r over the basis, from its 15 distinct moments sum w a^p b^q
+ *  (p + q <= 4) and 6 right-hand moments sum w h a^p b^q (p + q <= 2): half the work of
+ *  the 6 x 6 outer products. The samples are summed in pairs, the even ones in one lane
+ *  and the odd ones in the other, then the lanes added: the same sums on every machine,
+ *  in half the instructions where the processor has two-lane vectors. */
 class QuadricSystem
 {
 public:
-  inline void
-  add (double w, const Sample &s)
+  explicit QuadricSystem (const Samples &s)
   {
-    const double wa = w * s.a, wb = w * s.b;
-    const double wa2 = wa * s.a, wab = wa * s.b, wb2 = wb * s.b;
-    const double wa3 = wa2 * s.a, wa2b = wa2 * s.b, wab2 = wab * s.b, wb3 = wb2 * s.b;
-    m_[0] += w;
-    m_[1] += wa;
-    m_[2] += wb;
-    m_[3] += wa2;
-    m_[4] += wab;
-    m_[5] += wb2;
-    m_[6] += wa3;
-    m_[7] += wa2b;
-    m_[8] += wab2;
-    m_[9] += wb3;
-    m_[10] += wa3 * s.a;
-    m_[11] += wa3 * s.b;
-    m_[12] += wa2b * s.b;
-    m_[13] += wab2 * s.b;
-    m_[14] += wb3 * s.b;
-    r_[0] += wa2 * s.h;
-    r_[1] += wab * s.h;
-    r_[2] += wb2 * s.h;
-    r_[3] += wa * s.h;
-    r_[4] += wb * s.h;
-    r_[5] += w * s.h;
+    using Pair = Eigen::Array2d;
+    Pair m[15], r[6];
+    for (Pair &v : m)
+      v.setZero ();
+    for (Pair &v : r)
+      v.setZero ();
+    for (std::size_t k = 0; k < s.padded (); k += 2)
+    {
+      const Pair a = Eigen::Map<const Pair> (s.a.data () + k);
+      const Pair b = Eigen::Map<const Pair> (s.b.data () + k);
+      const Pair h = Eigen::Map<const Pair> (s.h.data () + k);
+      const Pair w = Eigen::Map<const Pair> (s.w.data () + k);
+      const Pair wa = w * a, wb = w * b;
+      const Pair wa2 = wa * a, wab = wa * b, wb2 = wb * b;
+      const Pair wa3 = wa2 * a, wa2b = wa2 * b, wab2 = wab * b, wb3 = wb2 * b;
+      m[0] += w;
+      m[1] += wa;
+      m[2] += wb;
+      m[3] += wa2;
+      m[4] += wab;
+      m[5] += wb2;
+      m[6] += wa3;
+      m[7] += wa2b;
+      m[8] += wab2;
+      m[9] += wb3;
+      m[10] += wa3 * a;
+      m[11] += wa3 * b;
+      m[12] += wa2b * b;
+      m[13] += wab2 * b;
+      m[14] += wb3 * b;
+      r[0] += wa2 * h;
+      r[1] += wab * h;
+      r[2] += wb2 * h;
+      r[3] += wa * h;
+      r[4] += wb * h;
+      r[5] += w * h;
+    }
+    for (int i = 0; i < 15; ++i)
+      m_[i] = m[i][0] + m[i][1];
+    for (int i = 0; i < 6; ++i)
+      r_[i] = r[i][0] + r[i][1];
   }
 
   /** The normal matrix over the basis (a^2, ab, b^2, a, b, 1). */
@@ -206,8 +243,8 @@ public:
   rhs () const { return Basis (r_); }
 
 private:
-  double m_[15] = {};
-  double r_[6] = {};
+  double m_[15];
+  double r_[6];
 };
 
 /** Whether an LDLT factorisation of a 6 x 6 normal matrix has a reciprocal condition
@@ -232,7 +269,7 @@ wellConditioned (const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> &ldlt)
  *  quadric was fitted (else the patch is the plane, or invalid). */
 Patch
 fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i, double noise,
-          std::vector<Sample> &samples, std::vector<double> &weight, bool *fitted = nullptr)
+          Samples &samples, bool *fitted = nullptr)
 {
   if (fitted)
     *fitted = false;
@@ -251,14 +288,12 @@ fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i,
   if (ring.size () < kQuadricMinimumRing)
     return patch;  // the plane through x_i
   samples.resize (ring.size ());
-  weight.assign (ring.size (), 1.0);
   for (std::size_t r = 0; r < ring.size (); ++r)
   {
     const Eigen::Vector3d p = x.row (ring[r]).transpose ();
-    Sample &s = samples[r];
-    patch.coordinates (p, s.a, s.b);
-    s.h = (p - patch.origin).dot (patch.normal);
-    patch.support = std::max (patch.support, s.a * s.a + s.b * s.b);
+    patch.coordinates (p, samples.a[r], samples.b[r]);
+    samples.h[r] = (p - patch.origin).dot (patch.normal);
+    patch.support = std::max (patch.support, samples.a[r] * samples.a[r] + samples.b[r] * samples.b[r]);
   }
   const bool robust = noise > 0.0;
   Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt;
@@ -266,18 +301,13 @@ fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i,
   // between two sheets starts on its own side.
   for (int iteration = 0; iteration < (robust ? kRobustIterations : 1); ++iteration)
   {
-    // The weights first, in a loop of their own: a call to exp in the accumulating loop
-    // would spill its 21 sums around every call.
     if (robust)
-      for (std::size_t r = 0; r < samples.size (); ++r)
+      for (std::size_t r = 0; r < samples.count; ++r)
       {
-        const Sample &s = samples[r];
-        const double t = (s.h - quadricHeight (patch.q, s.a, s.b)) / noise;
-        weight[r] = std::exp (-0.5 * t * t);
+        const double t = (samples.h[r] - quadricHeight (patch.q, samples.a[r], samples.b[r])) / noise;
+        samples.w[r] = std::exp (-0.5 * t * t);
       }
-    QuadricSystem system;
-    for (std::size_t r = 0; r < samples.size (); ++r)
-      system.add (weight[r], samples[r]);
+    const QuadricSystem system (samples);
     ldlt.compute (system.matrix ());
     if (ldlt.info () != Eigen::Success || !wellConditioned (ldlt))
       break;  // too few points keep weight: keep the last fit (or the plane)
@@ -313,8 +343,7 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
   std::vector<Patch> patches (blend ? n : 0);
   detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
     std::vector<VertexIndex> ring;
-    std::vector<Sample> samples;
-    std::vector<double> weight;
+    Samples samples;
     detail::TwoRing two_ring;
     for (std::size_t i = begin; i < end; ++i)
     {
@@ -322,14 +351,14 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
       if (support == QuadricSupport::THREE_RINGS)
         two_ring.grow (graph, ring);
       bool fitted = false;
-      Patch patch = fitPatch (x, ring, i, noise, samples, weight, &fitted);
+      Patch patch = fitPatch (x, ring, i, noise, samples, &fitted);
       if (adaptive && fitted)
       {
         // The wider fit where its surface, under the narrower ring's points, stays
         // within the noise of the narrower one's.
         const std::size_t narrow_size = ring.size ();
         two_ring.grow (graph, ring);
-        const Patch wide = fitPatch (x, ring, i, noise, samples, weight);
+        const Patch wide = fitPatch (x, ring, i, noise, samples);
         if (wide.valid ())
         {
           double sum = 0.0;
