@@ -704,7 +704,7 @@ more bending than the sphere of the same spacing, 0.18 against 0.13); the curvat
 quadric fits in the ball; the cloud's extent in spacings. What it cannot see: detail finer than
 about twelve spacings is read by its amplitude, not its length, and gets too much smoothing (a
 corrugated square: 1.4–1.9 × the plain rule's γ where ¼ × is best; `-gamma risk` still finds
-it, `ctest -R RiskEstimateFollowsTheSurfacesDetail`). The noise estimate itself stays high on
+it, `ctest -R RiskEstimate.FollowsTheSurfacesDetail`). The noise estimate itself stays high on
 detailed meshes at 10,000 points (σ̂ / σ median 1.1–1.4, the casting up to 4), and giving the
 rule the true σ instead gained little. On the Kinect table (`parameters.md`) the derived γ
 rises 3× (Tikhonov) and 4× (TV) and the table flattens further; the sequences of section 6 take

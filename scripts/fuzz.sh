@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # libFuzzer on the command line's file reading and on the three filters (fuzz/), built
-# with clang, AddressSanitizer and UndefinedBehaviorSanitizer in ./build-fuzz. Each
-# target runs for PGD_FUZZ_SECONDS seconds (default 30) on a copy of its seed corpus
-# fuzz/corpus/<target>; a crash, a sanitizer report, a broken invariant, a timeout or an
-# out-of-memory fails the run, and the input is left in build-fuzz/artifacts/.
+# with clang, AddressSanitizer and UndefinedBehaviorSanitizer in ./build-fuzz. The
+# targets run side by side, each for PGD_FUZZ_SECONDS seconds (default 30) on a copy of
+# its seed corpus fuzz/corpus/<target>; a crash, a sanitizer report, a broken invariant,
+# a timeout or an out-of-memory fails the run, and the input is left in
+# build-fuzz/artifacts/.
 # Needs what scripts/setup.sh installs, and clang with its fuzzer runtime (installed here
 # with apt-get, as root, when missing).
 set -euo pipefail
@@ -55,21 +56,34 @@ mkdir -p build-fuzz/artifacts
 # and a report printed then would be lost.
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:log_path=$PWD/build-fuzz/artifacts/asan"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:log_path=$PWD/build-fuzz/artifacts/ubsan"
+# The targets run at the same time, one per core (libFuzzer runs one job in one thread).
+pids=()
 for target in "${targets[@]}"; do
   # A fresh copy of the seeds: what the run adds stays out of the repository.
   rm -rf "build-fuzz/corpus/$target"
   mkdir -p "build-fuzz/corpus/$target"
   cp fuzz/corpus/"$target"/* "build-fuzz/corpus/$target/"
   echo "== fuzzing $target for ${seconds} s"
+  "build-fuzz/fuzz/$target" "build-fuzz/corpus/$target" -max_total_time="$seconds" \
+    -timeout=20 -rss_limit_mb=2048 -max_len=4096 -print_final_stats=1 \
+    -artifact_prefix="build-fuzz/artifacts/$target-" >"build-fuzz/$target.log" 2>&1 &
+  pids+=($!)
+done
+failed=0
+for index in "${!targets[@]}"; do
+  target="${targets[$index]}"
   log="build-fuzz/$target.log"
-  if ! "build-fuzz/fuzz/$target" "build-fuzz/corpus/$target" -max_total_time="$seconds" \
-      -timeout=20 -rss_limit_mb=2048 -max_len=4096 -print_final_stats=1 \
-      -artifact_prefix="build-fuzz/artifacts/$target-" >"$log" 2>&1; then
+  if ! wait "${pids[$index]}"; then
     tail -n 60 "$log" >&2
-    cat build-fuzz/artifacts/asan.* build-fuzz/artifacts/ubsan.* 2>/dev/null | head -n 80 >&2 || true
     echo "error: $target failed; the input is in build-fuzz/artifacts/ (full log: $log)" >&2
-    exit 1
+    failed=1
+    continue
   fi
+  echo "== $target:"
   grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$log" | sed "s/^/  /"
 done
+if [ "$failed" -ne 0 ]; then
+  cat build-fuzz/artifacts/asan.* build-fuzz/artifacts/ubsan.* 2>/dev/null | head -n 80 >&2 || true
+  exit 1
+fi
 echo "== fuzzing: no crash"

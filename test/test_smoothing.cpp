@@ -505,7 +505,16 @@ noisyBumps (std::size_t n, double noise, std::uint64_t seed)
 
 } // namespace
 
-TEST (SmoothingQuality, RiskEstimateFollowsTheSurfacesDetail)
+/** One case of RiskEstimate.FollowsTheSurfacesDetail: the local surface, the filter (TV
+ *  or Tikhonov) and the shape (0 the sphere, 1 the corrugated square). One test each, so
+ *  that the eight cases (about 30 filter runs each) spread over the test runner's jobs. */
+using RiskCase = std::tuple<LocalSurface, bool, int>;
+
+class RiskEstimate : public ::testing::TestWithParam<RiskCase>
+{
+};
+
+TEST_P (RiskEstimate, FollowsTheSurfacesDetail)
 {
   // A smooth surface takes far more smoothing than the noise alone asks for, a detailed
   // one less: the risk estimate goes the right way on both (measured against the rule
@@ -520,57 +529,64 @@ TEST (SmoothingQuality, RiskEstimateFollowsTheSurfacesDetail)
     bool more;           // the best gamma is above the rule's without its detail term
     double within_best;  // the risk estimate's error at most this times the sweep's best
   };
-  const std::vector<Shape> shapes = {
-      {"sphere", synthetic::noisySphere (6000, 1.0, 0.01, 36), kToSphere, true, 1.1},
-      {"corrugated square", noisyBumps (12000, 0.005, 37), distanceToBumps, false, 1.3}};
   // On the corrugated square (detail five spacings wide) the rule's detail term reads
   // the bumps by their amplitude only and asks for 1.4-1.9 x the rule without it; the
   // estimate comes back to at most about one step of sqrt 2 above that rule (TV), where
   // the best is at 1/4 of it or below.
-  for (const LocalSurface surface : {LocalSurface::QUADRIC, LocalSurface::BLENDED_QUADRICS})
-    for (int which = 0; which < 2; ++which)
-      for (const auto &shape : shapes)
-      {
-        const bool blended = surface == LocalSurface::BLENDED_QUADRICS;
-        auto cloud = std::make_shared<synthetic::Cloud> (shape.cloud);
-        const std::unique_ptr<GraphSmoothing<pcl::PointXYZ>> filter = smoother (which != 0);
-        EXPECT_EQ (filter->getGammaSelection (), GammaSelection::RULE);
-        filter->setLocalSurface (surface);
-        // Over two rings: the adaptive support's second fit took this test past its
-        // timeout under the sanitizers (about 30 runs per case).
-        filter->setAdaptiveSupport (false);
-        const double rule = meanDistance (*run (*filter, cloud), shape.distance);
-        const double rule_gamma = filter->getUsedGamma ();
-        double best = std::numeric_limits<double>::infinity ();
-        for (double m : {0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0})
-        {
-          filter->setGamma (m * rule_gamma);
-          best = std::min (best, meanDistance (*run (*filter, cloud), shape.distance));
-        }
-        filter->setAutomaticGamma ();
-        filter->setGammaSelection (GammaSelection::RISK_ESTIMATE);
-        const double risk = meanDistance (*run (*filter, cloud), shape.distance);
-        // Against the rule without its detail (and TV's noise) term (the own quadric has
-        // them too).
-        const double multiple = filter->getUsedGamma () / rule_gamma *
-                                refinedTermsOf (shape.cloud, which == 0 ? core::SmoothingKind::TIKHONOV
-                                                                        : core::SmoothingKind::TOTAL_VARIATION)
-                                    .refined;
-        std::printf ("%s, %s, %s: rule %.5f, best of the sweep %.5f, risk estimate %.5f (%.3g x the rule's "
-                     "gamma without its terms)\n", shape.name, which == 0 ? "Tikhonov" : "TV",
-                     blended ? "blended quadrics" : "own quadric", rule, best, risk, multiple);
-        EXPECT_LT (risk, shape.within_best * best) << shape.name;
-        EXPECT_LE (risk, (blended ? 1.1 : 1.02) * rule) << shape.name;
-        if (shape.more)
-          EXPECT_GE (multiple, 4.0) << shape.name;
-        else
-          EXPECT_LE (multiple, 1.6) << shape.name;
-        // An explicit gamma is used as it is.
-        filter->setGamma (0.5 * rule_gamma);
-        run (*filter, cloud);
-        EXPECT_EQ (filter->getUsedGamma (), 0.5 * rule_gamma);
-      }
+  const auto [surface, tv, which_shape] = GetParam ();
+  const Shape shape =
+      which_shape == 0
+          ? Shape{"sphere", synthetic::noisySphere (6000, 1.0, 0.01, 36), kToSphere, true, 1.1}
+          : Shape{"corrugated square", noisyBumps (12000, 0.005, 37), distanceToBumps, false, 1.3};
+  const bool blended = surface == LocalSurface::BLENDED_QUADRICS;
+  auto cloud = std::make_shared<synthetic::Cloud> (shape.cloud);
+  const std::unique_ptr<GraphSmoothing<pcl::PointXYZ>> filter = smoother (tv);
+  EXPECT_EQ (filter->getGammaSelection (), GammaSelection::RULE);
+  filter->setLocalSurface (surface);
+  // Over two rings: the adaptive support's second fit took this test past its timeout
+  // under the sanitizers (about 30 runs per case).
+  filter->setAdaptiveSupport (false);
+  const double rule = meanDistance (*run (*filter, cloud), shape.distance);
+  const double rule_gamma = filter->getUsedGamma ();
+  double best = std::numeric_limits<double>::infinity ();
+  for (double m : {0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0})
+  {
+    filter->setGamma (m * rule_gamma);
+    best = std::min (best, meanDistance (*run (*filter, cloud), shape.distance));
+  }
+  filter->setAutomaticGamma ();
+  filter->setGammaSelection (GammaSelection::RISK_ESTIMATE);
+  const double risk = meanDistance (*run (*filter, cloud), shape.distance);
+  // Against the rule without its detail (and TV's noise) term (the own quadric has them
+  // too).
+  const double multiple =
+      filter->getUsedGamma () / rule_gamma *
+      refinedTermsOf (shape.cloud, tv ? core::SmoothingKind::TOTAL_VARIATION : core::SmoothingKind::TIKHONOV)
+          .refined;
+  std::printf ("%s, %s, %s: rule %.5f, best of the sweep %.5f, risk estimate %.5f (%.3g x the rule's "
+               "gamma without its terms)\n", shape.name, tv ? "TV" : "Tikhonov",
+               blended ? "blended quadrics" : "own quadric", rule, best, risk, multiple);
+  EXPECT_LT (risk, shape.within_best * best) << shape.name;
+  EXPECT_LE (risk, (blended ? 1.1 : 1.02) * rule) << shape.name;
+  if (shape.more)
+    EXPECT_GE (multiple, 4.0) << shape.name;
+  else
+    EXPECT_LE (multiple, 1.6) << shape.name;
+  // An explicit gamma is used as it is.
+  filter->setGamma (0.5 * rule_gamma);
+  run (*filter, cloud);
+  EXPECT_EQ (filter->getUsedGamma (), 0.5 * rule_gamma);
 }
+
+INSTANTIATE_TEST_SUITE_P (
+    SurfacesFiltersShapes, RiskEstimate,
+    ::testing::Combine (::testing::Values (LocalSurface::QUADRIC, LocalSurface::BLENDED_QUADRICS),
+                        ::testing::Bool (), ::testing::Values (0, 1)),
+    [] (const ::testing::TestParamInfo<RiskCase> &info) {
+      return std::string (std::get<0> (info.param) == LocalSurface::QUADRIC ? "OwnQuadric" : "Blended") +
+             (std::get<1> (info.param) ? "TV" : "Tikhonov") +
+             (std::get<2> (info.param) == 0 ? "Sphere" : "CorrugatedSquare");
+    });
 
 TEST (SmoothingQuality, DetailTermFitsTheStrengthToTheSurface)
 {
@@ -578,7 +594,7 @@ TEST (SmoothingQuality, DetailTermFitsTheStrengthToTheSurface)
   // for: the refined filters' rule scales with the detail length in spacings, and beats
   // the same rule without that term. (Detail finer than the term's ball, such as the
   // corrugated square below, it reads as gentle bending: there it errs high; see
-  // RiskEstimateFollowsTheSurfacesDetail and docs/evaluation.md, section 5.)
+  // RiskEstimate.FollowsTheSurfacesDetail and docs/evaluation.md, section 5.)
   auto sphere = std::make_shared<synthetic::Cloud> (synthetic::noisySphere (20000, 1.0, 0.01, 38));
   for (int which = 0; which < 2; ++which)
   {
