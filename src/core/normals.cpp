@@ -265,14 +265,17 @@ wellConditioned (const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> &ldlt)
 }
 
 /** Fits vertex i's patch to the points of x over `ring` (its two rings, or three),
- *  robustly with a noise level > 0 (quadricDisplacement). `fitted`, when given: whether a
- *  quadric was fitted (else the patch is the plane, or invalid). */
+ *  robustly with a noise level > 0 (quadricDisplacement). `samples` receives the ring's
+ *  points in the patch's frame, in the ring's order (count 0 when the patch has no
+ *  extent or too few points for a quadric). `fitted`, when given: whether a quadric was
+ *  fitted (else the patch is the plane, or invalid). */
 Patch
 fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i, double noise,
           Samples &samples, bool *fitted = nullptr)
 {
   if (fitted)
     *fitted = false;
+  samples.count = 0;  // until they are filled, below
   Patch patch;
   if (ring.size () < 3)
     return patch;
@@ -344,6 +347,7 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
   detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
     std::vector<VertexIndex> ring;
     Samples samples;
+    std::vector<double> narrow_move;
     detail::TwoRing two_ring;
     for (std::size_t i = begin; i < end; ++i)
     {
@@ -355,19 +359,22 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
       if (adaptive && fitted)
       {
         // The wider fit where its surface, under the narrower ring's points, stays
-        // within the noise of the narrower one's.
+        // within the noise of the narrower one's. Each surface's move of those points
+        // along its normal comes from its fit's samples (the points' coordinates in its
+        // frame, within its extent): the narrower one's before the wider fit reuses them.
         const std::size_t narrow_size = ring.size ();
+        narrow_move.resize (narrow_size);
+        for (std::size_t r = 0; r < narrow_size; ++r)
+          narrow_move[r] = quadricHeight (patch.q, samples.a[r], samples.b[r]) - samples.h[r];
         two_ring.grow (graph, ring);
         const Patch wide = fitPatch (x, ring, i, noise, samples);
-        if (wide.valid ())
+        if (wide.valid () && samples.count == ring.size ())
         {
           double sum = 0.0;
           for (std::size_t r = 0; r < narrow_size; ++r)
           {
-            const Eigen::Vector3d p = x.row (ring[r]).transpose ();
-            const Eigen::Vector3d on_narrow = p + patch.move (p, 0.0) * patch.normal;
-            const Eigen::Vector3d on_wide = p + wide.move (p, 0.0) * wide.normal;
-            sum += (on_narrow - on_wide).squaredNorm ();
+            const double wide_move = quadricHeight (wide.q, samples.a[r], samples.b[r]) - samples.h[r];
+            sum += (narrow_move[r] * patch.normal - wide_move * wide.normal).squaredNorm ();
           }
           if (sum <= 6.0 * kSupportAgreement * kSupportAgreement * noise * noise)
             patch = wide;
