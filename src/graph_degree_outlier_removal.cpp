@@ -7,8 +7,7 @@
 #ifndef PCL_NO_PRECOMPILE
 #include <pcl_graph_denoise/impl/graph_degree_outlier_removal.hpp>
 
-#include <pcl/impl/instantiate.hpp>
-#include <pcl/point_types.h>
+#include "instantiated_types.h"
 
-PCL_INSTANTIATE (GraphDegreeOutlierRemoval, PCL_XYZ_POINT_TYPES)
+PCL_INSTANTIATE (GraphDegreeOutlierRemoval, PCL_GRAPH_DENOISE_INSTANTIATED_TYPES)
 #endif

@@ -7,8 +7,7 @@
 #ifndef PCL_NO_PRECOMPILE
 #include <pcl_graph_denoise/impl/graph_sequence_smoothing.hpp>
 
-#include <pcl/impl/instantiate.hpp>
-#include <pcl/point_types.h>
+#include "instantiated_types.h"
 
-PCL_INSTANTIATE (GraphSequenceSmoothing, PCL_XYZ_POINT_TYPES)
+PCL_INSTANTIATE (GraphSequenceSmoothing, PCL_GRAPH_DENOISE_INSTANTIATED_TYPES)
 #endif
