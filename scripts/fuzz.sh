@@ -38,6 +38,7 @@ fi
 
 targets=(fuzz_cloud_file fuzz_filters)
 flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g"
+flags+=" -DEIGEN_MALLOC_ALREADY_ALIGNED=1"  # allocate as Debian's PCL does: scripts/test_sanitizers.sh
 flags+=" -fsanitize-coverage-ignorelist=$PWD/fuzz/coverage_ignorelist.txt"
 echo "== configuring and building the fuzz targets with clang (2 jobs)"
 # The filters pre-compiled for pcl::PointXYZ only, the one type the targets use.
