@@ -769,6 +769,26 @@ and 8.8 × the graph build, target 2 ×). TV's sweep on the sphere now finds 4 �
 blend's weights), the two conjugate-gradient solves of the twicing 28% (166 iterations), the
 graph and the noise estimate most of the rest; no one piece would bring it near 2 ×.
 
+**Faster quadric fits and conjugate-gradient steps, the same output (2026-12-03).** The robust
+quadric fits, half of Tikhonov's time, now form their normal equations from the 15 + 6 distinct
+moments of each ring (summed two points at a time over the ring stored as columns, the same sums
+on every machine), compute their robust weights in a loop of their own, evaluate heights in
+scalars, and call Eigen's condition estimate only when the LDLT pivots are far apart; the
+adaptive support compares its two fits on the fits' own samples; the Tikhonov solver fuses its
+step, residual and preconditioning into one pass over the vertices (three passes per iteration
+instead of four). The output is the same to rounding (largest difference 7 × 10⁻¹⁶ on a
+200,000-point sphere). The quadric step on a noisy 1M-point sphere (two threads, a profiling
+harness, three interleaved runs each) went from 17.1–19.7 s to 13.5–15.0 s; single-threaded at
+200,000 points it is 1.42 × faster. `build/bench/bench_smoothing 100000` (two runs on a busy
+machine, σ = 1%): Tikhonov's defaults 1.13–1.40 s on the cube and 1.29–1.45 s on the sphere, TV's
+1.76–1.82 s and 2.13–2.56 s, against a graph build of 0.09–0.10 s and 0.14 s: 9.2–13.7 ×
+(Tikhonov) and 15.2–19.4 × (TV) the graph build, still far from the 2 × and 6 × targets; against
+MLS at its most accurate radius 0.76–1.02 × its time (Tikhonov) and 1.19–1.68 × (TV; it was
+1.15 × and 1.69 × before). Not done: collecting each vertex's rings by stamping a per-thread
+table of the cloud's size (about 8% of the fits' time, for 4 bytes per point and thread), and a
+faster exponential for the robust weights (glibc's takes 8–10 ns; Eigen's vectorised one was no
+faster without AVX).
+
 ## 6. Time-varying clouds
 
 `GraphSequenceSmoothing` denoises each frame on the paper's spatio-temporal graph (k1 = 10
