@@ -796,7 +796,16 @@ MLS at its most accurate radius 0.76–1.02 × its time (Tikhonov) and 1.19–1.
 1.15 × and 1.69 × before). Not done: collecting each vertex's rings by stamping a per-thread
 table of the cloud's size (about 8% of the fits' time, for 4 bytes per point and thread), and a
 faster exponential for the robust weights (glibc's takes 8–10 ns; Eigen's vectorised one was no
-faster without AVX).
+faster without AVX). On a million points in the same session (`build/bench/bench_smoothing
+1000000`; the graph build took 1.93 s on the sphere and 1.70 s on the cube, twice the 0.86 s of
+the runs above: the machine was slower, so compare the ratios): Tikhonov's defaults 0.00044 in
+17.5 s on the sphere and 0.00091 in 20.0 s on the cube (9.1 × and 11.8 × the graph build), TV's
+0.00088 in 27.4 s and 0.00106 in 28.5 s (14.3 × and 16.7 ×); MLS at its most accurate radius
+0.00086 in 26.3 s and 0.00113 in 21.6 s, jet smoothing 0.00621 and 0.00550 in 13.4 s and 13.2 s.
+Tikhonov is ahead of MLS in error and time on both (0.66 × and 0.93 × its time), TV on the cube
+and not on the sphere (1.04 × and 1.32 × its time). The sweeps put the sphere's best γ at 4 × the
+default for both filters (Tikhonov 0.00020, TV 0.00046: the default is 2.16 × and 1.91 × the
+best's error); on the cube the defaults are the best of the sweep or within 3% of it.
 
 ## 6. Time-varying clouds
 
