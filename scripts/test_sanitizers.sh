@@ -31,15 +31,15 @@ echo "== running the tests under ASan and UBSan"
 cd build-sanitize
 # The downstream consumer is an uninstrumented project by design: it runs in the
 # plain build (scripts/test.sh), not here.
-# Two repeat the code of other tests at ten times their cost here, and run in the plain
-# build only, so that CI stays within its time: the moving-sensor example
+# Others repeat the code of other tests at many times their cost here, and run in the
+# plain build only, so that CI stays within its time: the moving-sensor example
 # (sequence_registration_runs, 440 s here: PCL's ICP, then the streaming sequence filter
-# that test_sequence runs) and the risk-estimate test's cases (about 30 filter runs each, on 12,000 points: 340 s
-# for the corrugated squares, 160 s for the spheres; the risk selection's own code runs
-# here in RiskSelection.* and Cli.GammaRiskChoosesAsTheLibraryDoes); and the stereo case
-# of the organised camera clouds (84 s: the same 640 x 480 XYZRGBA layout through the same
-# TV filter as its Kinect case, which runs here). CI's time was 29.4 minutes of its 30
-# with these in.
+# that test_sequence runs); the risk-estimate test's cases (about 30 filter runs each, on
+# 12,000 points: 340 s for the corrugated squares, 160 s for the spheres; the risk
+# selection's own code runs here in RiskSelection.* and Cli.GammaRiskChoosesAsTheLibraryDoes);
+# and the stereo case of the organised camera clouds (84 s: the same 640 x 480 XYZRGBA
+# layout through the same TV filter as its Kinect case, which runs here). CI's time was
+# 29.4 minutes of its 30 with the spheres and the stereo case in.
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --output-on-failure --parallel 2 --exclude-regex \
   "downstream_consumer|sequence_registration_runs|RiskEstimate\\.FollowsTheSurfacesDetail/|OrganisedCameraCloudKeepsItsShape/.*stereo"
