@@ -23,6 +23,7 @@
 #include <random>
 #include <set>
 #include <stdexcept>
+#include <string>
 
 using namespace pcl_graph_denoise::core;
 namespace synthetic = pcl_graph_denoise::synthetic;
@@ -98,6 +99,19 @@ expectSameGraph (const PointGraph &a, const PointGraph &b)
   EXPECT_EQ (a.weight, b.weight);
   EXPECT_EQ (a.sigma, b.sigma);
   EXPECT_EQ (a.spacing, b.spacing);
+}
+
+/** Every row of g strictly increasing: sorted, and no neighbour stored twice (an edge
+ *  set, as edgesInCallerOrder builds, would hide a repeat). */
+void
+expectRowsSortedWithoutRepeats (const PointGraph &g, const std::string &what)
+{
+  for (std::size_t v = 0; v < g.numVertices (); ++v)
+  {
+    const auto first = g.col.begin () + g.row_ptr[v], last = g.col.begin () + g.row_ptr[v + 1];
+    ASSERT_EQ (std::adjacent_find (first, last, std::greater_equal<VertexIndex> ()), last)
+        << what << ": row " << v;
+  }
 }
 
 } // namespace
@@ -212,7 +226,8 @@ TEST (KnnGraph, MatchesBruteForceWithOutliersFarPointsAndUnevenDensity)
   far.row (1) << -1e6f, 3.0f, 2.0f;
   clouds = {{"outliers", outliers}, {"far points", far}, {"uneven density", uneven},
             {"line", line}, {"plane", plane}, {"lattice", lattice}, {"copies", copies}};
-  for (const int k : {1, 10, 25})
+  // k = 40: rows longer than the symmetrisation scans (it sorts and bisects them).
+  for (const int k : {1, 10, 25, 40})
     for (const auto &cloud : clouds)
     {
       KnnGraphParams params;
@@ -224,6 +239,7 @@ TEST (KnnGraph, MatchesBruteForceWithOutliersFarPointsAndUnevenDensity)
         got.insert (e.first);
       EXPECT_EQ (got, bruteKnnEdgesFloat (cloud.second, k, graph.order))
           << cloud.first << ", k = " << k;
+      expectRowsSortedWithoutRepeats (graph, cloud.first + std::string (", k = ") + std::to_string (k));
       params.num_threads = 3;
       expectSameGraph (graph, buildKnnGraph (cloud.second, params));
     }
@@ -438,8 +454,7 @@ TEST (KnnGraph, IsSymmetricSortedAndLoopFree)
     ASSERT_NE (back, edges.end ());
     EXPECT_EQ (back->second, e.second);  // bit for bit
   }
-  for (std::size_t v = 0; v < g.numVertices (); ++v)
-    EXPECT_TRUE (std::is_sorted (g.col.begin () + g.row_ptr[v], g.col.begin () + g.row_ptr[v + 1]));
+  expectRowsSortedWithoutRepeats (g, "k = 10");
   // Every vertex has at least its k neighbours.
   for (std::size_t v = 0; v < g.numVertices (); ++v)
     EXPECT_GE (g.row_ptr[v + 1] - g.row_ptr[v], 10u);
@@ -593,6 +608,7 @@ TEST (RadiusGraph, MatchesBruteForce)
     EXPECT_NEAR (e.second, std::exp (-dist2 (p, e.first.first, e.first.second) / 0.02), 1e-6);
   }
   EXPECT_EQ (got, expected);
+  expectRowsSortedWithoutRepeats (g, "radius 0.3");
 }
 
 TEST (RadiusGraph, DefaultRadiusFollowsTheMedianSpacing)

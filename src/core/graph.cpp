@@ -93,9 +93,14 @@ squaredDistance (const PointMatrix &p, VertexIndex i, VertexIndex j)
   return dx * dx + dy * dy + dz * dz;
 }
 
+/** Longest row of a directed graph that symmetrise scans for a link instead of sorting
+ *  it and bisecting: at k = 10, scanning the rows as the search left them took a third
+ *  less time than sorting them first (100,000 and 1,000,000 points). */
+constexpr std::uint64_t kScannedRow = 32;
+
 /** Union of a directed graph and its transpose (edge if i->j or j->i), weighted by
- *  the Gaussian of the edge length. The rows of `directed` hold no vertex twice; they
- *  are sorted here. Rows come out sorted, without duplicates. */
+ *  the Gaussian of the edge length. The rows of `directed` hold no vertex twice; the
+ *  longer ones are sorted here. Rows come out sorted, without duplicates. */
 void
 symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, int num_threads,
             PointGraph &graph)
@@ -105,13 +110,19 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
       n, num_threads,
       [&] (std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i)
-          std::sort (directed.idx.begin () + directed.ptr[i],
-                     directed.idx.begin () + directed.ptr[i + 1]);
+          if (directed.ptr[i + 1] - directed.ptr[i] > kScannedRow)
+            std::sort (directed.idx.begin () + directed.ptr[i],
+                       directed.idx.begin () + directed.ptr[i + 1]);
       },
       kBlock);
   const auto has = [&] (std::size_t row, VertexIndex j) {
-    return std::binary_search (directed.idx.begin () + directed.ptr[row],
-                               directed.idx.begin () + directed.ptr[row + 1], j);
+    const std::uint64_t first = directed.ptr[row], last = directed.ptr[row + 1];
+    if (last - first > kScannedRow)
+      return std::binary_search (directed.idx.begin () + first, directed.idx.begin () + last, j);
+    bool found = false;  // no early exit: a branch-free loop over a short row
+    for (std::uint64_t e = first; e < last; ++e)
+      found |= directed.idx[e] == j;
+    return found;
   };
 
   // Most k-NN links are mutual: only the others add an entry to the row they point
