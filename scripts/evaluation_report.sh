@@ -219,11 +219,12 @@ referred to the quartile's own place in the band (|z| = 1.15 noise scales, exp(�
 residuals are biased low where ε is only a few noise scales (the neighbours of a point off the
 middle lie towards it: the median residual gives 0.86 of the true noise at 1,000,000 points), so
 outliers just beyond the band pass for surface points and the surface's tail is cut short of the
-optimum. The same rescue with the candidates' residuals and the noise scale taken from planes over a ball
-of 2 ε (unbiased on the 1,000,000-point sphere: 0.00495 for a noise of 0.005): 0.9685 there and
-0.892 at 100,000 points and 2%, but 0.8404 on the 20,000-point sphere at 3% noise (from 0.8484)
-and 0.944 / 0.951 / 0.944 on the PU-GAN meshes (from 0.952 / 0.959 / 0.955): over the wider ball
-the surface's curvature and detail widen the residuals, and outliers near the surface pass.
+optimum. The same rescue with the candidates' residuals and the noise scale taken from planes
+over a ball of 2 ε (unbiased on the 1,000,000-point sphere: 0.00495 for a noise of 0.005): 0.9685
+there and 0.892 at 100,000 points and 2%, but 0.8404 on the 20,000-point sphere at 3% noise
+(from 0.8484) and 0.944 / 0.951 / 0.944 on the PU-GAN meshes (from 0.952 / 0.959 / 0.955): over
+the wider ball the surface's curvature and detail widen the residuals, and outliers near the
+surface pass.
 Neither taken (scratch driver on `synthetic::noisySphere`, `synthetic::noisyCube` and
 `addUniformOutliers`, and `build/bench/evaluate outliers`).
 TAIL
@@ -831,8 +832,8 @@ MLS at its most accurate radius 0.76–1.02 × its time (Tikhonov) and 1.19–1.
 1.15 × and 1.69 × before). Not done: collecting each vertex's rings by stamping a per-thread
 table of the cloud's size (about 8% of the fits' time, for 4 bytes per point and thread), and a
 faster exponential for the robust weights (glibc's takes 8–10 ns; Eigen's vectorised one was no
-faster without AVX in a first try, but see the end of this paragraph). On a million points in the same session (`build/bench/bench_smoothing
-1000000`; the graph build took 1.93 s on the sphere and 1.70 s on the cube, twice the 0.86 s of
+faster without AVX in a first try, but see the end of this paragraph). On a million points in
+the same session (`build/bench/bench_smoothing 1000000`; the graph build took 1.93 s on the sphere and 1.70 s on the cube, twice the 0.86 s of
 the runs above: the machine was slower, so compare the ratios): Tikhonov's defaults 0.00044 in
 17.5 s on the sphere and 0.00091 in 20.0 s on the cube (9.1 × and 11.8 × the graph build), TV's
 0.00088 in 27.4 s and 0.00106 in 28.5 s (14.3 × and 16.7 ×); MLS at its most accurate radius

@@ -239,7 +239,8 @@ TEST (KnnGraph, MatchesBruteForceWithOutliersFarPointsAndUnevenDensity)
         got.insert (e.first);
       EXPECT_EQ (got, bruteKnnEdgesFloat (cloud.second, k, graph.order))
           << cloud.first << ", k = " << k;
-      expectRowsSortedWithoutRepeats (graph, cloud.first + std::string (", k = ") + std::to_string (k));
+      expectRowsSortedWithoutRepeats (graph,
+                                      cloud.first + std::string (", k = ") + std::to_string (k));
       params.num_threads = 3;
       expectSameGraph (graph, buildKnnGraph (cloud.second, params));
     }

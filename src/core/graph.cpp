@@ -106,18 +106,21 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
             PointGraph &graph)
 {
   const std::size_t n = static_cast<std::size_t> (points.rows ());
+  const auto bisected = [&] (std::size_t row) {
+    return directed.ptr[row + 1] - directed.ptr[row] > kScannedRow;
+  };
   detail::parallelFor (
       n, num_threads,
       [&] (std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i)
-          if (directed.ptr[i + 1] - directed.ptr[i] > kScannedRow)
+          if (bisected (i))
             std::sort (directed.idx.begin () + directed.ptr[i],
                        directed.idx.begin () + directed.ptr[i + 1]);
       },
       kBlock);
   const auto has = [&] (std::size_t row, VertexIndex j) {
     const std::uint64_t first = directed.ptr[row], last = directed.ptr[row + 1];
-    if (last - first > kScannedRow)
+    if (bisected (row))
       return std::binary_search (directed.idx.begin () + first, directed.idx.begin () + last, j);
     bool found = false;  // no early exit: a branch-free loop over a short row
     for (std::uint64_t e = first; e < last; ++e)
@@ -128,8 +131,8 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
   // Most k-NN links are mutual: only the others add an entry to the row they point
   // to. Count those per row on all threads (atomic counters), then place them (the
   // order within a row depends on scheduling: every row is sorted afterwards). Both
-  // passes test mutuality again (a bisection in a row of k): cheaper than keeping a
-  // flag per link, n x k bytes of fresh memory.
+  // passes test mutuality again (a scan of a row of k, or a bisection of a long row):
+  // cheaper than keeping a flag per link, n x k bytes of fresh memory.
   std::vector<std::atomic<std::uint32_t>> extra (n);
   detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)

@@ -314,7 +314,8 @@ fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i,
         const double t = (samples.h[r] - quadricHeight (patch.q, samples.a[r], samples.b[r])) / noise;
         samples.w[r] = -0.5 * t * t;
       }
-      auto w = Eigen::Map<Eigen::ArrayXd> (samples.w.data (), static_cast<Eigen::Index> (samples.count));
+      auto w = Eigen::Map<Eigen::ArrayXd> (samples.w.data (),
+                                           static_cast<Eigen::Index> (samples.count));
       w = w.exp ();
     }
     const QuadricSystem system (samples);
