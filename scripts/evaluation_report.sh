@@ -227,6 +227,25 @@ the wider ball the surface's curvature and detail widen the residuals, and outli
 surface pass.
 Neither taken (scratch driver on `synthetic::noisySphere`, `synthetic::noisyCube` and
 `addUniformOutliers`, and `build/bench/evaluate outliers`).
+
+A kernel no narrower than the noise (checked 2026-12-03, night). Where the noise is wider than
+the spacing (the 1,000,000-point sphere at 0.5% noise: spacing 0.0064, noise 0.005), θ = the
+spacing is narrower than the band, the band's smoothed density falls to the threshold
+(0.2 × the lower quartile) at about 3 noise scales, and the degree test removes the surface's
+tails there: 2,002 surface points, where the Bayes cut for 5% outliers lies at about 3.75. Tried:
+θ = max(spacing, a s₀) and ε = 3 θ, s₀ the median plane residual / 0.6745 over at most 20,000
+queries sampled at the spacing's ε. With a = 2 that sphere gave 0.9693 (removed surface points
+2,002 → 198; RadiusOutlierRemoval's best 0.9662, the oracle's 0.9699), and 100,000 points at 2%
+noise 0.8786 → 0.8913; but with 20% outliers at 1,000,000 points 0.9714 → 0.9690, the
+20,000-point sphere at 3% and 4% noise 0.8484 → 0.8205 and 0.8036 → 0.7830, the noisy cube of
+100,000 points at 2% 0.8039 → 0.7725 (a wider kernel lets the outliers near the surface through),
+and the PU-GAN meshes 0.952 / 0.959 / 0.955 → 0.949 / 0.957 / 0.951 (behind RadiusOutlierRemoval's
+0.954 at 5% and 20%). With a = 1.75: 0.952 / 0.958 / 0.953 there, and the dense sphere only
+0.9567 → 0.9578 at a = 1.5. Clouds whose noise is within the spacing (the spheres at 0.2%,
+100,000 points at 0.5%, the cubes at 0.5%, the three shapes, the real clouds) do not change. A
+fixed θ on the dense sphere: 0.0064 (the default) 0.9563, 0.008 0.9687, 0.01 0.9676, 0.013
+0.9622. Not taken: as with the Bayes cuts above, what the dense sphere gains the meshes and the
+denser outliers lose (the same scratch driver, and `build/bench/evaluate outliers`).
 TAIL
   cat "$results/outliers.md"
   cat <<'TAIL'

@@ -55,10 +55,12 @@ bruteForce (const PointMatrix &p, int k, std::vector<VertexIndex> &indices, std:
   }
 }
 
-/** allNearestOthers on `raw` equals brute force on 1 and 3 threads. */
-void
+/** allNearestOthers on `raw` equals brute force on 1 and 3 threads, and takes the same
+ *  paths on both; returns them. */
+NearestOthersPaths
 expectExact (const PointMatrix &raw, int k, const std::string &what)
 {
+  NearestOthersPaths paths[2];
   const MortonSort sorted = mortonSort (raw, 1);
   const PointMatrix points = reorderPoints (raw, sorted.order);
   const auto n = static_cast<std::size_t> (points.rows ());
@@ -69,7 +71,8 @@ expectExact (const PointMatrix &raw, int k, const std::string &what)
   {
     std::vector<VertexIndex> got (n * k);
     std::vector<double> mean (n);
-    allNearestOthers (points, sorted, k, threads, got.data (), mean.data ());
+    allNearestOthers (points, sorted, k, threads, got.data (), mean.data (),
+                      &paths[threads == 1 ? 0 : 1]);
     std::size_t wrong = 0, first = n;
     for (std::size_t v = 0; v < n; ++v)
       if (!std::equal (got.begin () + v * k, got.begin () + (v + 1) * k, want.begin () + v * k) ||
@@ -81,6 +84,12 @@ expectExact (const PointMatrix &raw, int k, const std::string &what)
     EXPECT_EQ (wrong, 0u) << what << ", k = " << k << ", " << threads << " threads: " << wrong
                           << " rows differ, the first at vertex " << first;
   }
+  EXPECT_EQ (paths[0].grid, paths[1].grid) << what;
+  EXPECT_EQ (paths[0].coarser, paths[1].coarser) << what;
+  EXPECT_EQ (paths[0].scanned, paths[1].scanned) << what;
+  EXPECT_EQ (paths[0].tree, paths[1].tree) << what;
+  EXPECT_EQ (paths[0].grid + paths[0].coarser + paths[0].scanned + paths[0].tree, n) << what;
+  return paths[0];
 }
 
 } // namespace
@@ -141,7 +150,8 @@ TEST (AllNearestOthers, ExactAmongTiesInTheTree)
     p.row (0) << 1e7f, 0.0f, 0.0f;
     p.row (1) << -1e7f, 0.0f, 0.0f;
     for (const int k : {1, 7, 30})
-      expectExact (p, k, "a lattice with far points, seed " + std::to_string (seed));
+      EXPECT_GT (expectExact (p, k, "a lattice with far points, seed " + std::to_string (seed)).tree,
+                 16u);
   }
 }
 
@@ -169,4 +179,42 @@ TEST (AllNearestOthers, ExactOnCopiesOutliersAndCoincidentPoints)
     two.row (i) << float (i % 2), 0.0f, 0.0f;
   expectExact (two, 10, "two positions");
   expectExact (one, 10, "one position");
+}
+
+TEST (AllNearestOthers, ExactOnEveryPath)
+{
+  // A sphere whose noise (6% of its radius) is a few spacings: the points in the thin
+  // tails of the noise, whose k-th neighbour may lie beyond the 27 cells, are settled on
+  // a coarser grid.
+  std::mt19937 rng (17);
+  std::normal_distribution<float> g (0.0f, 1.0f);
+  PointMatrix sphere (12000, 3);
+  for (Eigen::Index i = 0; i < sphere.rows (); ++i)
+  {
+    const Eigen::Vector3f s = Eigen::Vector3f (g (rng), g (rng), g (rng)).normalized ();
+    sphere.row (i) = (s + 0.06f * Eigen::Vector3f (g (rng), g (rng), g (rng))).transpose ();
+  }
+  for (const int k : {7, 10})
+  {
+    const NearestOthersPaths paths = expectExact (sphere, k, "a noisy sphere");
+    EXPECT_GT (paths.coarser, 0u) << "k = " << k;
+    EXPECT_EQ (paths.tree, 0u) << "k = " << k;
+  }
+  // A cube of points and five far ones, alone in their cells at every level tried: they
+  // are compared with every point, and no k-d tree is built.
+  std::uniform_real_distribution<float> u (0.0f, 1.0f);
+  PointMatrix cube (3005, 3);
+  for (Eigen::Index i = 0; i < 3000; ++i)
+    cube.row (i) << u (rng), u (rng), u (rng);
+  cube.row (3000) << 60.0f, 0.5f, 0.5f;
+  cube.row (3001) << -40.0f, 0.5f, 0.5f;
+  cube.row (3002) << 0.5f, 70.0f, 0.5f;
+  cube.row (3003) << 0.5f, -50.0f, 30.0f;
+  cube.row (3004) << 0.5f, 0.5f, -45.0f;
+  for (const int k : {1, 10})
+  {
+    const NearestOthersPaths paths = expectExact (cube, k, "a cube and five far points");
+    EXPECT_EQ (paths.scanned, 5u) << "k = " << k;
+    EXPECT_EQ (paths.tree, 0u) << "k = " << k;
+  }
 }

@@ -16,7 +16,9 @@
 #include <cfloat>
 #include <cmath>
 #include <cstring>
+#include <cstdlib>
 #include <limits>
+#include <memory>
 
 namespace pcl_graph_denoise {
 namespace core {
@@ -314,16 +316,270 @@ private:
 
 } // namespace
 
+namespace {
+
+/** Coarser levels of the octree tried for the points one level leaves unsettled, before
+ *  the k-d tree: cells twice as wide take in the k-th neighbour of a point near its
+ *  cell's faces, and of most points in sparse regions. */
+constexpr int kCoarserLevels = 2;
+
+/** Most points left to the k-d tree that are compared with every point instead: at
+ *  1,000,000 points one such comparison took 2 ms, the tree's construction 0.15 s. */
+constexpr std::size_t kScannedRest = 16;
+
+/** One level of the curve's octree as a grid: its cells, each a run of consecutive
+ *  points, and the search of a point's k nearest among the 27 cells around its own. */
+class GridLevel
+{
+public:
+  /** `split[v]`: the level at which point v and the one before it first fall in
+   *  different cells (0: the same cell at every level). */
+  GridLevel (const PointMatrix &points, const MortonSort &sorted,
+             const std::vector<std::uint8_t> &split, int level, std::size_t k,
+             std::size_t crowded)
+    : points_ (points), grid_ (sorted.grid), k_ (k), crowded_ (crowded)
+  {
+    const std::size_t n = sorted.codes.size ();
+    const int bits = grid_.axis_bits;
+    const int shift = 3 * (bits - level);
+    for (std::size_t v = 0; v < n; ++v)
+      if (v == 0 || (split[v] != 0 && split[v] <= level))
+      {
+        start_.push_back (static_cast<VertexIndex> (v));
+        keys_.push_back (sorted.codes[v] >> shift);
+      }
+    start_.push_back (static_cast<VertexIndex> (n));
+    table_.reset (new CellTable (keys_));
+    side_ = std::int64_t (1) << level;
+    // When every point coincides (no extent) they share one cell at every level and
+    // there are no faces to compare with: the k-d tree takes them all.
+    flat_ = !(grid_.scale > 0.0);
+    width_ = flat_ ? 0.0 : double (std::uint64_t (1) << (bits - level)) / grid_.scale;
+    // How far a point may lie outside its cell's faces as computed here (lo + m width,
+    // in double precision): the codes come from (p - lo) scale, rounded otherwise.
+    double magnitude = 0.0;
+    for (int d = 0; d < 3; ++d)
+      magnitude = std::max ({magnitude, std::abs (grid_.lo (d)),
+                             std::abs (grid_.lo (d) + double (side_) * width_)});
+    face_error_ = 16.0 * DBL_EPSILON * magnitude;
+    // The 26 neighbouring cells, nearest first: faces, edges, corners.
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          if (dx != 0 || dy != 0 || dz != 0)
+            around_.push_back ({dx, dy, dz});
+    std::stable_sort (around_.begin (), around_.end (), [] (const auto &a, const auto &b) {
+      return std::abs (a[0]) + std::abs (a[1]) + std::abs (a[2]) <
+             std::abs (b[0]) + std::abs (b[1]) + std::abs (b[2]);
+    });
+  }
+
+  std::size_t
+  numCells () const { return keys_.size (); }
+
+  /** The first point of cell c (numCells() gives the end of the last). */
+  VertexIndex
+  cellStart (std::size_t c) const { return start_[c]; }
+
+  /** Per-thread buffers of settle(). */
+  struct Scratch
+  {
+    struct Neighbour
+    {
+      std::size_t begin, end;  // its points among the candidates
+      double low[3], high[3];  // its faces
+    };
+    std::vector<Neighbour> cells;
+    std::vector<float> cx, cy, cz, d2;  // the candidates, cell by cell
+    std::vector<VertexIndex> cid;
+    std::vector<std::uint64_t> within, nearest;
+  };
+
+  /** Searches the points of cell c whose flag in `unsettled` is `which` (1: the ones an
+   *  earlier level left; 0 on the first level, which flags every point of the cell
+   *  first): writes the k nearest and their mean distance of each point it settles and
+   *  clears its flag; leaves the others flagged. */
+  void
+  settle (std::size_t c, std::uint8_t which, std::vector<std::uint8_t> &unsettled,
+          VertexIndex *indices, double *mean_distances, Scratch &s) const
+  {
+    const VertexIndex first = start_[c], last = start_[c + 1];
+    if (which == 0)
+      std::fill (unsettled.begin () + first, unsettled.begin () + last, 1);
+    else if (std::find (unsettled.begin () + first, unsettled.begin () + last, 1) ==
+             unsettled.begin () + last)
+      return;
+    if (flat_ || size (c) > crowded_)
+      return;
+    const std::int64_t cell[3] = {std::int64_t (deinterleave (keys_[c], 0)),
+                                  std::int64_t (deinterleave (keys_[c], 1)),
+                                  std::int64_t (deinterleave (keys_[c], 2))};
+    // The candidates: the cell's own points first, then each neighbour's.
+    s.cx.clear ();
+    s.cy.clear ();
+    s.cz.clear ();
+    s.cid.clear ();
+    s.cells.clear ();
+    const auto gather = [&] (std::size_t other, const std::int64_t *at) {
+      Scratch::Neighbour cell_of;
+      cell_of.begin = s.cid.size ();
+      for (VertexIndex p = start_[other]; p < start_[other + 1]; ++p)
+      {
+        s.cx.push_back (points_ (p, 0));
+        s.cy.push_back (points_ (p, 1));
+        s.cz.push_back (points_ (p, 2));
+        s.cid.push_back (p);
+      }
+      cell_of.end = s.cid.size ();
+      for (int d = 0; d < 3; ++d)
+      {
+        cell_of.low[d] = grid_.lo (d) + double (at[d]) * width_;
+        cell_of.high[d] = cell_of.low[d] + width_;
+      }
+      s.cells.push_back (cell_of);
+    };
+    gather (c, cell);
+    for (const auto &offset : around_)
+    {
+      const std::int64_t at[3] = {cell[0] + offset[0], cell[1] + offset[1], cell[2] + offset[2]};
+      if (at[0] < 0 || at[1] < 0 || at[2] < 0 || at[0] >= side_ || at[1] >= side_ ||
+          at[2] >= side_)
+        continue;
+      const std::int64_t other = table_->find (
+          interleave (std::uint64_t (at[0]), std::uint64_t (at[1]), std::uint64_t (at[2])));
+      if (other < 0)
+        continue;
+      if (size (std::size_t (other)) > crowded_)
+        return;
+      gather (std::size_t (other), at);
+    }
+    if (s.cid.size () <= k_)
+      return;
+    // A point is settled when its k-th distance is below its distance to every cell
+    // outside the 27 (none lies beyond the grid's edges).
+    double low[3], high[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      low[d] = cell[d] == 0 ? -std::numeric_limits<double>::infinity ()
+                            : grid_.lo (d) + double (cell[d] - 1) * width_;
+      high[d] = cell[d] + 1 >= side_ ? std::numeric_limits<double>::infinity ()
+                                     : grid_.lo (d) + double (cell[d] + 2) * width_;
+    }
+    s.d2.resize (s.cid.size ());
+    s.within.resize (s.cid.size ());
+    s.nearest.resize (k_);
+    NearestK best (s.nearest);
+    // The guess of the k-th distance: the previous point's of this cell.
+    float guess = std::numeric_limits<float>::infinity ();
+    for (VertexIndex v = first; v < last; ++v)
+    {
+      if (!unsettled[v])
+        continue;
+      const float x = points_ (v, 0), y = points_ (v, 1), z = points_ (v, 2);
+      const double q[3] = {x, y, z};
+      const std::size_t self = v - first;
+      // The squared distance from the point to a cell, less the faces' error.
+      const auto gap2 = [&] (const Scratch::Neighbour &cell_of) {
+        double sum = 0.0;
+        for (int d = 0; d < 3; ++d)
+        {
+          const double gap = q[d] < cell_of.low[d]    ? cell_of.low[d] - q[d]
+                             : q[d] > cell_of.high[d] ? q[d] - cell_of.high[d]
+                                                      : 0.0;
+          const double shrunk = std::max (0.0, gap - face_error_);
+          sum += shrunk * shrunk;
+        }
+        return sum;
+      };
+      const auto distances = [&] (const Scratch::Neighbour &cell_of) {
+        for (std::size_t j = cell_of.begin; j < cell_of.end; ++j)
+        {
+          const float ex = x - s.cx[j], ey = y - s.cy[j], ez = z - s.cz[j];
+          s.d2[j] = ex * ex + ey * ey + ez * ez;
+        }
+      };
+      // First within the guess, a little wider: the candidates within it, if k or
+      // more, hold the k nearest.
+      std::size_t found = 0;
+      if (guess < std::numeric_limits<float>::infinity ())
+        for (std::size_t b = 0; b < s.cells.size (); ++b)
+        {
+          if (b > 0 && !mayReach (gap2 (s.cells[b]), guess))
+            continue;
+          distances (s.cells[b]);
+          for (std::size_t j = s.cells[b].begin; j < s.cells[b].end; ++j)
+          {
+            s.within[found] = NearestK::key (s.d2[j], s.cid[j]);
+            found += (s.d2[j] <= guess) & (j != self);
+          }
+        }
+      if (found >= k_)
+      {
+        std::nth_element (s.within.begin (), s.within.begin () + (k_ - 1),
+                          s.within.begin () + found);
+        best.take (s.within.data ());
+      }
+      else
+      {
+        // Else the own cell, then the neighbours that may hold anything nearer than
+        // the k-th so far.
+        best.clear ();
+        for (std::size_t b = 0; b < s.cells.size (); ++b)
+        {
+          float worst = best.worst ();
+          if (b > 0 && !mayReach (gap2 (s.cells[b]), worst))
+            continue;
+          distances (s.cells[b]);
+          for (std::size_t j = s.cells[b].begin; j < s.cells[b].end; ++j)
+            if (s.d2[j] <= worst && j != self)
+            {
+              best.offer (s.d2[j], s.cid[j]);
+              worst = best.worst ();
+            }
+        }
+      }
+      if (best.full ())
+        guess = best.worst () * kGuessWidening;
+      double reach = std::numeric_limits<double>::infinity ();
+      for (int d = 0; d < 3; ++d)
+        reach = std::min ({reach, q[d] - low[d], high[d] - q[d]});
+      reach = std::max (0.0, reach - face_error_);
+      if (best.full () && !mayReach (reach * reach, best.worst ()))
+      {
+        mean_distances[v] = best.write (indices + std::size_t (v) * k_);
+        unsettled[v] = 0;
+      }
+    }
+  }
+
+private:
+  std::size_t
+  size (std::size_t c) const { return std::size_t (start_[c + 1] - start_[c]); }
+
+  const PointMatrix &points_;
+  MortonGrid grid_;
+  std::size_t k_, crowded_;
+  std::vector<VertexIndex> start_;  // the cells: runs of points, start_[c] .. start_[c + 1]
+  std::vector<std::uint64_t> keys_;
+  std::unique_ptr<CellTable> table_;
+  std::int64_t side_ = 0;  // cells per axis
+  bool flat_ = false;
+  double width_ = 0.0, face_error_ = 0.0;
+  std::vector<std::array<int, 3>> around_;
+};
+
+} // namespace
+
 void
 allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, int num_threads,
-                  VertexIndex *indices, double *mean_distances)
+                  VertexIndex *indices, double *mean_distances, NearestOthersPaths *paths)
 {
+  NearestOthersPaths counted;
   const std::size_t n = sorted.codes.size ();
   const auto kk = static_cast<std::size_t> (k);
   if (n == 0 || k < 1)
     return;
-  const MortonGrid &grid = sorted.grid;
-  const int bits = grid.axis_bits;
+  const int bits = sorted.grid.axis_bits;
 
   // Level at which each point and the previous one first fall in different cells: that
   // of their codes' highest differing bit (0: the same cell at every level).
@@ -362,221 +618,66 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
     else
       fine = middle - 1;
   }
-  std::vector<VertexIndex> start;  // the cells: runs of points, start[c] .. start[c + 1]
-  std::vector<std::uint64_t> keys;
-  const int shift = 3 * (bits - level);
-  for (std::size_t v = 0; v < n; ++v)
-    if (v == 0 || (split[v] != 0 && split[v] <= level))
-    {
-      start.push_back (static_cast<VertexIndex> (v));
-      keys.push_back (sorted.codes[v] >> shift);
-    }
-  start.push_back (static_cast<VertexIndex> (n));
-  std::vector<std::uint8_t> ().swap (split);
-  const CellTable table (keys);
-  const auto side = std::int64_t (1) << level;  // cells per axis
-  const auto size = [&] (std::size_t c) { return std::size_t (start[c + 1] - start[c]); };
-  const std::size_t crowded = kCrowdedCell * occupancy;
-  // When every point coincides (no extent) they share one cell at every level and
-  // there are no faces to compare with: the k-d tree takes them all.
-  const bool flat = !(grid.scale > 0.0);
-  const double width = flat ? 0.0 : double (std::uint64_t (1) << (bits - level)) / grid.scale;
-  // How far a point may lie outside its cell's faces as computed here (lo + m width, in
-  // double precision): the codes come from (p - lo) scale, rounded otherwise.
-  double magnitude = 0.0;
-  for (int d = 0; d < 3; ++d)
-    magnitude = std::max ({magnitude, std::abs (grid.lo (d)),
-                           std::abs (grid.lo (d) + double (side) * width)});
-  const double face_error = 16.0 * DBL_EPSILON * magnitude;
-  // The 26 neighbouring cells, nearest first: faces, edges, corners.
-  std::vector<std::array<int, 3>> around;
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx)
-        if (dx != 0 || dy != 0 || dz != 0)
-          around.push_back ({dx, dy, dz});
-  std::stable_sort (around.begin (), around.end (), [] (const auto &a, const auto &b) {
-    return std::abs (a[0]) + std::abs (a[1]) + std::abs (a[2]) <
-           std::abs (b[0]) + std::abs (b[1]) + std::abs (b[2]);
-  });
 
-  // The grid settles most points; the others (in crowded cells, or whose k-th neighbour
-  // may lie beyond the 27 cells) are searched in the k-d tree afterwards.
+  // The grid settles most points; the points it leaves (whose k-th neighbour may lie
+  // beyond the 27 cells) are searched again on coarser grids, and the rest (in crowded
+  // cells, or still unsettled) by comparison with every point if few, else in the k-d
+  // tree.
   std::vector<std::uint8_t> unsettled (n, 0);
-  parallelFor (
-      keys.size (), num_threads,
-      [&] (std::size_t first_cell, std::size_t last_cell) {
-        struct Neighbour
-        {
-          std::size_t begin, end;  // its points among the candidates
-          double low[3], high[3];  // its faces
-        };
-        std::vector<Neighbour> cells;
-        std::vector<float> cx, cy, cz, d2;  // the candidates, cell by cell
-        std::vector<VertexIndex> cid;
-        std::vector<std::uint64_t> within, nearest (kk);
-        NearestK best (nearest);
-        for (std::size_t c = first_cell; c < last_cell; ++c)
-        {
-          const auto defer = [&] () {
-            std::fill (unsettled.begin () + start[c], unsettled.begin () + start[c + 1], 1);
-          };
-          if (flat || size (c) > crowded)
-          {
-            defer ();
-            continue;
-          }
-          const std::int64_t cell[3] = {std::int64_t (deinterleave (keys[c], 0)),
-                                        std::int64_t (deinterleave (keys[c], 1)),
-                                        std::int64_t (deinterleave (keys[c], 2))};
-          // The candidates: the cell's own points first, then each neighbour's.
-          cx.clear ();
-          cy.clear ();
-          cz.clear ();
-          cid.clear ();
-          cells.clear ();
-          bool crowded_around = false;
-          const auto gather = [&] (std::size_t other, const std::int64_t *at) {
-            Neighbour cell_of;
-            cell_of.begin = cid.size ();
-            for (VertexIndex p = start[other]; p < start[other + 1]; ++p)
-            {
-              cx.push_back (points (p, 0));
-              cy.push_back (points (p, 1));
-              cz.push_back (points (p, 2));
-              cid.push_back (p);
-            }
-            cell_of.end = cid.size ();
-            for (int d = 0; d < 3; ++d)
-            {
-              cell_of.low[d] = grid.lo (d) + double (at[d]) * width;
-              cell_of.high[d] = cell_of.low[d] + width;
-            }
-            cells.push_back (cell_of);
-          };
-          gather (c, cell);
-          for (const auto &offset : around)
-          {
-            const std::int64_t at[3] = {cell[0] + offset[0], cell[1] + offset[1],
-                                        cell[2] + offset[2]};
-            if (at[0] < 0 || at[1] < 0 || at[2] < 0 || at[0] >= side || at[1] >= side ||
-                at[2] >= side)
-              continue;
-            const std::int64_t other = table.find (
-                interleave (std::uint64_t (at[0]), std::uint64_t (at[1]), std::uint64_t (at[2])));
-            if (other < 0)
-              continue;
-            if (size (std::size_t (other)) > crowded)
-            {
-              crowded_around = true;
-              break;
-            }
-            gather (std::size_t (other), at);
-          }
-          if (crowded_around || cid.size () <= kk)
-          {
-            defer ();
-            continue;
-          }
-          // A point is settled when its k-th distance is below its distance to every
-          // cell outside the 27 (none lies beyond the grid's edges).
-          double low[3], high[3];
-          for (int d = 0; d < 3; ++d)
-          {
-            low[d] = cell[d] == 0 ? -std::numeric_limits<double>::infinity ()
-                                  : grid.lo (d) + double (cell[d] - 1) * width;
-            high[d] = cell[d] + 1 >= side ? std::numeric_limits<double>::infinity ()
-                                          : grid.lo (d) + double (cell[d] + 2) * width;
-          }
-          d2.resize (cid.size ());
-          within.resize (cid.size ());
-          // The guess of the k-th distance: the previous point's of this cell.
-          float guess = std::numeric_limits<float>::infinity ();
-          for (VertexIndex v = start[c]; v < start[c + 1]; ++v)
-          {
-            const float x = points (v, 0), y = points (v, 1), z = points (v, 2);
-            const double q[3] = {x, y, z};
-            const std::size_t self = v - start[c];
-            // The squared distance from the point to a cell, less the faces' error.
-            const auto gap2 = [&] (const Neighbour &cell_of) {
-              double sum = 0.0;
-              for (int d = 0; d < 3; ++d)
-              {
-                const double gap = q[d] < cell_of.low[d] ? cell_of.low[d] - q[d]
-                                   : q[d] > cell_of.high[d] ? q[d] - cell_of.high[d] : 0.0;
-                const double shrunk = std::max (0.0, gap - face_error);
-                sum += shrunk * shrunk;
-              }
-              return sum;
-            };
-            const auto distances = [&] (const Neighbour &cell_of) {
-              for (std::size_t j = cell_of.begin; j < cell_of.end; ++j)
-              {
-                const float ex = x - cx[j], ey = y - cy[j], ez = z - cz[j];
-                d2[j] = ex * ex + ey * ey + ez * ez;
-              }
-            };
-            // First within the guess, a little wider: the candidates within it, if k
-            // or more, hold the k nearest.
-            std::size_t found = 0;
-            if (guess < std::numeric_limits<float>::infinity ())
-              for (std::size_t b = 0; b < cells.size (); ++b)
-              {
-                if (b > 0 && !mayReach (gap2 (cells[b]), guess))
-                  continue;
-                distances (cells[b]);
-                for (std::size_t j = cells[b].begin; j < cells[b].end; ++j)
-                {
-                  within[found] = NearestK::key (d2[j], cid[j]);
-                  found += (d2[j] <= guess) & (j != self);
-                }
-              }
-            if (found >= kk)
-            {
-              std::nth_element (within.begin (), within.begin () + (kk - 1),
-                                within.begin () + found);
-              best.take (within.data ());
-            }
-            else
-            {
-              // Else the own cell, then the neighbours that may hold anything nearer
-              // than the k-th so far.
-              best.clear ();
-              for (std::size_t b = 0; b < cells.size (); ++b)
-              {
-                float worst = best.worst ();
-                if (b > 0 && !mayReach (gap2 (cells[b]), worst))
-                  continue;
-                distances (cells[b]);
-                for (std::size_t j = cells[b].begin; j < cells[b].end; ++j)
-                  if (d2[j] <= worst && j != self)
-                  {
-                    best.offer (d2[j], cid[j]);
-                    worst = best.worst ();
-                  }
-              }
-            }
-            if (best.full ())
-              guess = best.worst () * kGuessWidening;
-            double reach = std::numeric_limits<double>::infinity ();
-            for (int d = 0; d < 3; ++d)
-              reach = std::min ({reach, q[d] - low[d], high[d] - q[d]});
-            reach = std::max (0.0, reach - face_error);
-            if (best.full () && !mayReach (reach * reach, best.worst ()))
-              mean_distances[v] = best.write (indices + std::size_t (v) * kk);
-            else
-              unsettled[v] = 1;
-          }
-        }
-      },
-      64);
+  std::size_t left = n;
+  for (int pass = 0; pass <= kCoarserLevels && level - pass >= 0 && left > 0; ++pass)
+  {
+    const std::size_t before = left;
+    const GridLevel grid (points, sorted, split, level - pass, kk, kCrowdedCell * occupancy);
+    parallelFor (
+        grid.numCells (), num_threads,
+        [&] (std::size_t first_cell, std::size_t last_cell) {
+          GridLevel::Scratch scratch;
+          for (std::size_t c = first_cell; c < last_cell; ++c)
+            grid.settle (c, pass == 0 ? 0 : 1, unsettled, indices, mean_distances, scratch);
+        },
+        64);
+    left = static_cast<std::size_t> (std::count (unsettled.begin (), unsettled.end (), 1));
+    (pass == 0 ? counted.grid : counted.coarser) += before - left;
+    if (pass > 0 && left == before)
+      break;  // a coarser level settles no more
+  }
+  std::vector<std::uint8_t> ().swap (split);
 
   std::vector<VertexIndex> rest;
   for (std::size_t v = 0; v < n; ++v)
     if (unsettled[v])
       rest.push_back (static_cast<VertexIndex> (v));
+  (rest.size () <= kScannedRest ? counted.scanned : counted.tree) = rest.size ();
+  if (paths)
+    *paths = counted;
   if (rest.empty ())
     return;
+  if (rest.size () <= kScannedRest)
+  {
+    // A few: compared with every point, rather than a k-d tree built for them.
+    parallelFor (
+        rest.size (), num_threads,
+        [&] (std::size_t begin, std::size_t end) {
+          std::vector<std::uint64_t> keys (kk);
+          NearestK best (keys);
+          for (std::size_t r = begin; r < end; ++r)
+          {
+            const VertexIndex v = rest[r];
+            const float x = points (v, 0), y = points (v, 1), z = points (v, 2);
+            best.clear ();
+            for (std::size_t j = 0; j < n; ++j)
+            {
+              const float ex = x - points (j, 0), ey = y - points (j, 1), ez = z - points (j, 2);
+              if (j != v)
+                best.offer (ex * ex + ey * ey + ez * ez, static_cast<VertexIndex> (j));
+            }
+            mean_distances[v] = best.write (indices + std::size_t (v) * kk);
+          }
+        },
+        1);
+    return;
+  }
   const KdTree tree (points);
   parallelFor (
       rest.size (), num_threads,

@@ -62,6 +62,15 @@ private:
   std::unique_ptr<Impl> impl_;
 };
 
+/** How allNearestOthers found each point's neighbours. */
+struct NearestOthersPaths
+{
+  std::size_t grid = 0;      ///< on the grid of its level
+  std::size_t coarser = 0;   ///< on a coarser grid
+  std::size_t scanned = 0;   ///< compared with every point
+  std::size_t tree = 0;      ///< in the k-d tree
+};
+
 /** The k nearest other points of every point (k < number of points), by (squared
  *  distance in single precision, index), so that ties go to the lower index: row v of
  *  `indices` (n x k, row-major) for point v, nearest first, and the mean of their
@@ -71,12 +80,16 @@ private:
  *  Each point is compared with the points of the 27 cells around its own at one level
  *  of the curve's octree, nearest cells first while they can still hold one of its k
  *  nearest (the level: the finest at which half the points lie in cells of at least
- *  max(4, k) points). Points whose k-th neighbour may lie beyond those cells, and
- *  points in crowded cells (many copies, or a few far outliers stretching the grid)
- *  are searched in a k-d tree instead. Does not depend on the number of threads. */
+ *  max(4, k) points). Points whose k-th neighbour may lie beyond those cells are searched
+ *  again on the grids of up to two coarser levels (cells twice and four times as wide).
+ *  The points left, in crowded cells (many copies, or a few far outliers stretching the
+ *  grid) or still unsettled, are compared with every point when there are at most 16 of
+ *  them, else searched in a k-d tree. `paths`, when given, receives how many points each
+ *  way settled. Does not depend on the number of threads. */
 void
 allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, int num_threads,
-                  VertexIndex *indices, double *mean_distances);
+                  VertexIndex *indices, double *mean_distances,
+                  NearestOthersPaths *paths = nullptr);
 
 } // namespace detail
 } // namespace core
