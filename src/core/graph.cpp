@@ -100,7 +100,9 @@ constexpr std::uint64_t kScannedRow = 32;
 
 /** Union of a directed graph and its transpose (edge if i->j or j->i), weighted by
  *  the Gaussian of the edge length. The rows of `directed` hold no vertex twice; the
- *  longer ones are sorted here. Rows come out sorted, without duplicates. */
+ *  longer ones are sorted here. Rows come out sorted, without duplicates. The graph's
+ *  columns take over `directed.idx`'s storage (room reserved there beyond its links saves
+ *  a copy); `directed` is left empty. */
 void
 symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, int num_threads,
             PointGraph &graph)
@@ -129,7 +131,7 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
   };
 
   // Most k-NN links are mutual: only the others add an entry to the row they point
-  // to. Count those per row on all threads (atomic counters), then place them (the
+  // to. Count those per row on all threads (atomic counters), then list them apart (the
   // order within a row depends on scheduling: every row is sorted afterwards). Both
   // passes test mutuality again (a scan of a row of k, or a bisection of a long row):
   // cheaper than keeping a flag per link, n x k bytes of fresh memory.
@@ -138,18 +140,25 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
     for (std::size_t i = begin; i < end; ++i)
       extra[i].store (0, std::memory_order_relaxed);
   });
-  detail::parallelFor (
-      n, num_threads,
-      [&] (std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i)
-          for (std::uint64_t e = directed.ptr[i]; e < directed.ptr[i + 1]; ++e)
-          {
-            const VertexIndex j = directed.idx[e];
-            if (!has (j, static_cast<VertexIndex> (i)))
-              extra[j].fetch_add (1, std::memory_order_relaxed);
-          }
-      },
-      kBlock);
+  const auto eachOneWayLink = [&] (auto &&visit) {
+    detail::parallelFor (
+        n, num_threads,
+        [&] (std::size_t begin, std::size_t end) {
+          for (std::size_t i = begin; i < end; ++i)
+            for (std::uint64_t e = directed.ptr[i]; e < directed.ptr[i + 1]; ++e)
+            {
+              const VertexIndex j = directed.idx[e];
+              if (!has (j, static_cast<VertexIndex> (i)))
+                visit (static_cast<VertexIndex> (i), j);
+            }
+        },
+        kBlock);
+  };
+  eachOneWayLink ([&] (VertexIndex, VertexIndex j) {
+    extra[j].fetch_add (1, std::memory_order_relaxed);
+  });
+  // Row i: its out-going links, then the others' links to it. The latter, for all rows
+  // in row order, are listed apart first: row i's start at row_ptr[i] - directed.ptr[i].
   graph.row_ptr.assign (n + 1, 0);
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -157,37 +166,32 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
                            extra[i].load (std::memory_order_relaxed);
     extra[i].store (0, std::memory_order_relaxed);
   }
+  std::vector<VertexIndex> incoming (graph.row_ptr[n] - directed.ptr[n]);
+  eachOneWayLink ([&] (VertexIndex i, VertexIndex j) {
+    const std::uint64_t at = graph.row_ptr[j] - directed.ptr[j];
+    incoming[at + extra[j].fetch_add (1, std::memory_order_relaxed)] = i;
+  });
+  // The out-going links move within their storage to their rows' places, the last row
+  // first: no row moves towards the front, so none overwrites one yet to move.
+  graph.col = std::move (directed.idx);
   detail::resizeOnHugePages (graph.col, graph.row_ptr[n]);
+  for (std::size_t i = n; i-- > 0;)
+    if (graph.row_ptr[i] != directed.ptr[i])
+      std::copy_backward (graph.col.begin () + directed.ptr[i],
+                          graph.col.begin () + directed.ptr[i + 1],
+                          graph.col.begin () + graph.row_ptr[i] +
+                              (directed.ptr[i + 1] - directed.ptr[i]));
   detail::resizeOnHugePages (graph.weight, graph.row_ptr[n]);
-  // Each row: its out-going links first, then the others' links to it.
   detail::parallelFor (
       n, num_threads,
       [&] (std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i)
         {
-          std::copy (directed.idx.begin () + directed.ptr[i],
-                     directed.idx.begin () + directed.ptr[i + 1],
-                     graph.col.begin () + graph.row_ptr[i]);
-          for (std::uint64_t e = directed.ptr[i]; e < directed.ptr[i + 1]; ++e)
-          {
-            const VertexIndex j = directed.idx[e];
-            if (!has (j, static_cast<VertexIndex> (i)))
-            {
-              const std::uint64_t at = graph.row_ptr[j] + (directed.ptr[j + 1] - directed.ptr[j]) +
-                                       extra[j].fetch_add (1, std::memory_order_relaxed);
-              graph.col[at] = static_cast<VertexIndex> (i);
-            }
-          }
-        }
-      },
-      kBlock);
-  detail::parallelFor (
-      n, num_threads,
-      [&] (std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i)
-        {
+          const std::uint64_t out = directed.ptr[i + 1] - directed.ptr[i];
           const auto first = graph.col.begin () + graph.row_ptr[i];
           const auto last = graph.col.begin () + graph.row_ptr[i + 1];
+          const auto from = incoming.begin () + (graph.row_ptr[i] - directed.ptr[i]);
+          std::copy (from, from + (last - first - out), first + out);
           std::sort (first, last);
           for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
             graph.weight[e] = gaussianWeight (
@@ -195,6 +199,7 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
         }
       },
       kBlock);
+  directed = DirectedLists ();
 }
 
 /** Per-point mean distance to its k nearest other points (k < n), for the vertices in
@@ -338,6 +343,9 @@ buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params)
   directed.ptr.resize (n + 1);
   for (std::size_t i = 0; i <= n; ++i)
     directed.ptr[i] = static_cast<std::uint64_t> (i) * k;
+  // Room for the symmetrisation's one-way links too (a fifth of the links at k = 10 on
+  // surfaces): reserved, not touched, until they come.
+  detail::reserveOnHugePages (directed.idx, n * static_cast<std::size_t> (k) * 3 / 2);
   detail::resizeOnHugePages (directed.idx, n * static_cast<std::size_t> (k));
   std::vector<double> mean (n);
   detail::allNearestOthers (ordered, sorted, k, params.num_threads, directed.idx.data (),
@@ -782,7 +790,8 @@ buildRadiusGraph (const PointMatrix &points, const RadiusGraphParams &params,
       },
       kBlock);
   std::partial_sum (directed.ptr.begin (), directed.ptr.end (), directed.ptr.begin ());
-  directed.idx.reserve (directed.ptr[n]);
+  // A little room for links the search saw from one side only (see below).
+  detail::reserveOnHugePages (directed.idx, directed.ptr[n] + directed.ptr[n] / 1024 + 64);
   for (auto &idx : block_idx)
   {
     directed.idx.insert (directed.idx.end (), idx.begin (), idx.end ());

@@ -44,11 +44,10 @@ adviseHugePages (void *data, std::size_t bytes)
 #endif
 }
 
-/** v.resize (n) (value-initialised), with fresh storage on huge pages when it needs
- *  more than it has. */
+/** v.reserve (n), with fresh storage on huge pages when it needs more than it has. */
 template <typename T>
 void
-resizeOnHugePages (std::vector<T> &v, std::size_t n)
+reserveOnHugePages (std::vector<T> &v, std::size_t n)
 {
   if (n > v.capacity ())
   {
@@ -58,6 +57,15 @@ resizeOnHugePages (std::vector<T> &v, std::size_t n)
     fresh.assign (v.begin (), v.end ());
     v.swap (fresh);
   }
+}
+
+/** v.resize (n) (value-initialised), with fresh storage on huge pages when it needs
+ *  more than it has. */
+template <typename T>
+void
+resizeOnHugePages (std::vector<T> &v, std::size_t n)
+{
+  reserveOnHugePages (v, n);
   v.resize (n);
 }
 
