@@ -183,26 +183,27 @@ TEST (AllNearestOthers, ExactOnCopiesOutliersAndCoincidentPoints)
 
 TEST (AllNearestOthers, ExactOnEveryPath)
 {
-  // A sphere whose noise (6% of its radius) is a few spacings: the points in the thin
-  // tails of the noise, whose k-th neighbour may lie beyond the 27 cells, are settled on
-  // a coarser grid.
+  // A square of 10,000 points and, beside it, one 20 times sparser: the grid's cells fit
+  // the dense square, where the sparse one's k-th neighbours often lie beyond the 27
+  // cells around a point's own; the next coarser grid settles those.
   std::mt19937 rng (17);
-  std::normal_distribution<float> g (0.0f, 1.0f);
-  PointMatrix sphere (12000, 3);
-  for (Eigen::Index i = 0; i < sphere.rows (); ++i)
+  std::uniform_real_distribution<float> u (0.0f, 1.0f);
+  PointMatrix squares (12000, 3);
+  for (Eigen::Index i = 0; i < squares.rows (); ++i)
   {
-    const Eigen::Vector3f s = Eigen::Vector3f (g (rng), g (rng), g (rng)).normalized ();
-    sphere.row (i) = (s + 0.06f * Eigen::Vector3f (g (rng), g (rng), g (rng))).transpose ();
+    if (i < 10000)
+      squares.row (i) << u (rng), u (rng), 0.0f;
+    else
+      squares.row (i) << 2.0f + 2.0f * u (rng), 2.0f * u (rng), 0.0f;
   }
   for (const int k : {7, 10})
   {
-    const NearestOthersPaths paths = expectExact (sphere, k, "a noisy sphere");
-    EXPECT_GT (paths.coarser, 0u) << "k = " << k;
+    const NearestOthersPaths paths = expectExact (squares, k, "a dense and a sparse square");
+    EXPECT_GT (paths.coarser, 100u) << "k = " << k;
     EXPECT_EQ (paths.tree, 0u) << "k = " << k;
   }
   // A cube of points and five far ones, alone in their cells at every level tried: they
   // are compared with every point, and no k-d tree is built.
-  std::uniform_real_distribution<float> u (0.0f, 1.0f);
   PointMatrix cube (3005, 3);
   for (Eigen::Index i = 0; i < 3000; ++i)
     cube.row (i) << u (rng), u (rng), u (rng);

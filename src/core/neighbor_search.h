@@ -80,7 +80,7 @@ struct NearestOthersPaths
  *  Each point is compared with the points of the 27 cells around its own at one level
  *  of the curve's octree, nearest cells first while they can still hold one of its k
  *  nearest (the level: the finest at which half the points lie in cells of at least
- *  max(4, k) points). Points whose k-th neighbour may lie beyond those cells are searched
+ *  max(4, 2k) points). Points whose k-th neighbour may lie beyond those cells are searched
  *  again on the grids of up to two coarser levels (cells twice and four times as wide).
  *  The points left, in crowded cells (many copies, or a few far outliers stretching the
  *  grid) or still unsettled, are compared with every point when there are at most 16 of
