@@ -400,19 +400,16 @@ public:
     std::vector<std::uint64_t> within, nearest;
   };
 
-  /** Searches the points of cell c whose flag in `unsettled` is `which` (1: the ones an
-   *  earlier level left; 0 on the first level, which flags every point of the cell
-   *  first): writes the k nearest and their mean distance of each point it settles and
-   *  clears its flag; leaves the others flagged. */
+  /** Searches the points of cell c flagged in `unsettled`: writes the k nearest and their
+   *  mean distance of each point it settles and clears its flag; leaves the others
+   *  flagged. */
   void
-  settle (std::size_t c, std::uint8_t which, std::vector<std::uint8_t> &unsettled,
-          VertexIndex *indices, double *mean_distances, Scratch &s) const
+  settle (std::size_t c, std::vector<std::uint8_t> &unsettled, VertexIndex *indices,
+          double *mean_distances, Scratch &s) const
   {
     const VertexIndex first = start_[c], last = start_[c + 1];
-    if (which == 0)
-      std::fill (unsettled.begin () + first, unsettled.begin () + last, 1);
-    else if (std::find (unsettled.begin () + first, unsettled.begin () + last, 1) ==
-             unsettled.begin () + last)
+    if (std::find (unsettled.begin () + first, unsettled.begin () + last, 1) ==
+        unsettled.begin () + last)
       return;
     if (flat_ || size (c) > crowded_)
       return;
@@ -628,7 +625,7 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
   // beyond the 27 cells) are searched again on coarser grids, and the rest (in crowded
   // cells, or still unsettled) by comparison with every point if few, else in the k-d
   // tree.
-  std::vector<std::uint8_t> unsettled (n, 0);
+  std::vector<std::uint8_t> unsettled (n, 1);
   std::size_t left = n;
   for (int pass = 0; pass <= kCoarserLevels && level - pass >= 0 && left > 0; ++pass)
   {
@@ -639,7 +636,7 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
         [&] (std::size_t first_cell, std::size_t last_cell) {
           GridLevel::Scratch scratch;
           for (std::size_t c = first_cell; c < last_cell; ++c)
-            grid.settle (c, pass == 0 ? 0 : 1, unsettled, indices, mean_distances, scratch);
+            grid.settle (c, unsettled, indices, mean_distances, scratch);
         },
         64);
     left = static_cast<std::size_t> (std::count (unsettled.begin (), unsettled.end (), 1));
