@@ -10,6 +10,7 @@
 #include "huge_pages.h"
 #include "neighbor_search.h"
 #include "parallel.h"
+#include "rank_sort.h"
 #include "spatial_order.h"
 
 #include <algorithm>
@@ -97,33 +98,6 @@ squaredDistance (const PointMatrix &p, VertexIndex i, VertexIndex j)
  *  it and bisecting: at k = 10, scanning the rows as the search left them took a third
  *  less time than sorting them first (100,000 and 1,000,000 points). */
 constexpr std::uint64_t kScannedRow = 32;
-
-/** Sorts a row of distinct vertices: a row of up to kRankedRow by each one's rank (how
- *  many are smaller), branch-free; longer rows by std::sort. On the k-NN graph of a noisy
- *  100,000-point sphere (k = 10) the pass that sorts and weighs the rows took 14-17 ms
- *  instead of 17-23 ms with std::sort. */
-constexpr std::ptrdiff_t kRankedRow = 32;
-
-template <typename Iterator>
-void
-sortRow (Iterator first, Iterator last)
-{
-  const std::ptrdiff_t m = last - first;
-  if (m > kRankedRow)
-  {
-    std::sort (first, last);
-    return;
-  }
-  VertexIndex row[kRankedRow];
-  std::copy (first, last, row);
-  for (std::ptrdiff_t a = 0; a < m; ++a)
-  {
-    std::ptrdiff_t rank = 0;
-    for (std::ptrdiff_t b = 0; b < m; ++b)
-      rank += row[b] < row[a];
-    first[rank] = row[a];
-  }
-}
 
 /** Union of a directed graph and its transpose (edge if i->j or j->i), weighted by
  *  the Gaussian of the edge length. The rows of `directed` hold no vertex twice; the
@@ -230,7 +204,8 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
           const auto last = graph.col.begin () + graph.row_ptr[i + 1];
           const auto from = incoming.begin () + (graph.row_ptr[i] - directed.ptr[i]);
           std::copy (from, from + (last - first - out), first + out);
-          sortRow (first, last);
+          const auto size = static_cast<std::size_t> (last - first);
+          detail::smallestFirst (graph.col.data () + graph.row_ptr[i], size, size);  // sorts it
           for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
             graph.weight[e] = gaussianWeight (
                 squaredDistance (points, static_cast<VertexIndex> (i), graph.col[e]), sigma);

@@ -10,6 +10,7 @@
 #include <nanoflann.hpp>
 
 #include "parallel.h"
+#include "rank_sort.h"
 
 #include <algorithm>
 #include <array>
@@ -94,12 +95,12 @@ public:
     return (std::uint64_t (bits) << 32) | id;
   }
 
-  /** The k keys from `keys` (the k smallest of a list, in any order). */
+  /** The k smallest of the m >= k distinct keys at `keys` (which it reorders). */
   void
-  take (const std::uint64_t *keys)
+  take (std::uint64_t *keys, std::size_t m)
   {
+    smallestFirst (keys, m, key_.size ());
     std::copy (keys, keys + key_.size (), key_.begin ());
-    std::sort (key_.begin (), key_.end ());
   }
 
   void
@@ -516,11 +517,7 @@ public:
           }
         }
       if (found >= k_)
-      {
-        std::nth_element (s.within.begin (), s.within.begin () + (k_ - 1),
-                          s.within.begin () + found);
-        best.take (s.within.data ());
-      }
+        best.take (s.within.data (), found);
       else
       {
         // Else the own cell, then the neighbours that may hold anything nearer than
