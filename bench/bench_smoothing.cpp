@@ -9,8 +9,8 @@
  *
  * For a noisy unit sphere and a noisy cube [-1,1]^3 (Gaussian noise 0.01) of each size:
  * time and mean distance to the true surface of GraphTikhonovSmoothing and
- * GraphTVSmoothing (defaults, with setAdaptiveSupport (false), and with the risk-estimate
- * gamma), pcl::MovingLeastSquares (polynomial order 2, all threads, at search radii of
+ * GraphTVSmoothing (defaults, with setAdaptiveSupport (false), with a quadric at every
+ * vertex (setPatchCover (0)), and with the risk-estimate gamma), pcl::MovingLeastSquares (polynomial order 2, all threads, at search radii of
  * 1, 1.5, 2 and 3 times the mean distance to the 20th neighbour, so that its best radius
  * is shown), and CGAL::jet_smooth_point_set (k = 18, parallel).
  * Also: the time to build the k-NN graph alone, the ratios the targets are stated in,
@@ -108,6 +108,16 @@ benchShape (const char *shape, const Cloud::Ptr &cloud, const Distance &distance
   const double t_tv_two_rings = seconds ([&] { tv.filter (out); });
   row ("GraphTVSmoothing (-adaptive_support 0)", t_tv_two_rings, meanDistance (out, distance), input_error);
   tv.setAdaptiveSupport (true);
+  // A quadric at every vertex instead of at the default cover's centres.
+  const int cover = tikhonov.getPatchCover ();
+  tikhonov.setPatchCover (0);
+  const double t_tik_every = seconds ([&] { tikhonov.filter (out); });
+  row ("GraphTikhonovSmoothing (-patch_cover 0)", t_tik_every, meanDistance (out, distance), input_error);
+  tikhonov.setPatchCover (cover);
+  tv.setPatchCover (0);
+  const double t_tv_every = seconds ([&] { tv.filter (out); });
+  row ("GraphTVSmoothing (-patch_cover 0)", t_tv_every, meanDistance (out, distance), input_error);
+  tv.setPatchCover (cover);
   // The risk-estimate selection of gamma (four blocks of 12,500 points above 50,000).
   tikhonov.setGammaSelection (GammaSelection::RISK_ESTIMATE);
   const double t_tik_risk = seconds ([&] { tikhonov.filter (out); });
@@ -141,6 +151,9 @@ benchShape (const char *shape, const Cloud::Ptr &cloud, const Distance &distance
                t_graph, t_tik / t_graph, t_tv / t_graph);
   std::printf ("  with -adaptive_support 0: Tikhonov %.2fx the graph build, TV %.2fx\n",
                t_tik_two_rings / t_graph, t_tv_two_rings / t_graph);
+  std::printf ("  with -patch_cover 0: Tikhonov %.2fx the graph build (the default cover %d takes "
+               "%.2fx its time), TV %.2fx (%.2fx)\n",
+               t_tik_every / t_graph, cover, t_tik / t_tik_every, t_tv_every / t_graph, t_tv / t_tv_every);
   std::printf ("  with -gamma risk: Tikhonov %.2fx the graph build (%.2fx its default's time), TV %.2fx "
                "(%.2fx)\n",
                t_tik_risk / t_graph, t_tik_risk / t_tik, t_tv_risk / t_graph, t_tv_risk / t_tv);

@@ -16,7 +16,8 @@
  *           correction, 16 anisotropic TV, 32 negative, 64 keep organised, 128 organised
  *   byte 1  k: 0 -> 0, 254 -> -1, 255 -> INT_MAX, else the value
  *   byte 2  sigma: kValues[b % 32]; bit 5: quadrics over two rings (no adaptive support),
- *           bit 6: the own quadric instead of the blended quadrics
+ *           bit 6: the own quadric instead of the blended quadrics, bit 7: a quadric at
+ *           every point (patch cover 0)
  *   byte 3  gamma (255: automatic), byte 4 radius: kValues[b % 32]
  *   byte 5  threshold rule (b & 3: ratio, absolute, fraction, default) and its value
  *           kValues[b >> 3]
@@ -255,6 +256,8 @@ checkSmoothing (GraphSmoothing<pcl::PointXYZ> &filter, const Cloud::Ptr &cloud,
                           : p[2] & 64 ? LocalSurface::QUADRIC
                                       : LocalSurface::BLENDED_QUADRICS);
   filter.setAdaptiveSupport (!(p[2] & 32));
+  if (p[2] & 128)
+    filter.setPatchCover (0);
   filter.setShrinkageCorrection (!(flags & 8));
   filter.setNumberOfThreads (threads);
   filter.setInputCloud (cloud);

@@ -162,6 +162,9 @@ def filters_seeds():
     # The own quadric (sigma byte bit 6) over two rings (bit 5: no adaptive support).
     write(t, "own_quadric_two_rings", filters_input([0, 10, 64 | 32, 255, 0, 3, 0x1A], [],
                                                     grid_points(sphere(60, 21))))
+    # A blended quadric at every point (sigma byte bit 7: patch cover 0), automatic gamma.
+    write(t, "every_point_quadric", filters_input([0, 10, 128, 255, 0, 3, 0x1A], [],
+                                                  grid_points(sphere(60, 22))))
     # Geo-referenced (kind 5), micrometres (kind 4), duplicates (kind 2), k = INT_MAX.
     rng = random.Random(18)
     geo = [(5, bytes(rng.randrange(256) for _ in range(3))) for _ in range(40)]

@@ -417,7 +417,7 @@ lines (const std::string &text)
 const char *const every_option =
     "-outliers -tikhonov -tv -radius -sigma -threshold_ratio -degree_threshold -outlier_fraction "
     "-keep_organized -threads -k -gamma -graph_iterations -normal_displacement -local_surface "
-    "-adaptive_support -shrinkage_correction -tolerance -max_iterations -solver -norm -memory_limit -removed -ascii -q "
+    "-adaptive_support -patch_cover -shrinkage_correction -tolerance -max_iterations -solver -norm -memory_limit -removed -ascii -q "
     "-temporal -smoother -k2 -window -motion_compensation";
 
 }  // namespace
@@ -1248,36 +1248,79 @@ TEST (Cli, LocalSurfaceReachesTheFilter)
   EXPECT_NE (help.out.find ("(default: blended)"), std::string::npos) << help.out;
 }
 
+/** The tool's results (y coordinates) on the first sphere frame with `step` and each of
+ *  `values` of `option` ("": the option left out), each checked against the library's
+ *  Filter set up by `configure` for that value. */
+template <typename Filter>
+std::map<std::string, std::vector<float>>
+optionResults (const fs::path &dir, const std::string &step, const std::string &option,
+               const std::vector<std::string> &values,
+               const std::function<void (Filter &, const std::string &)> &configure)
+{
+  const PCLPointCloud2 input = sphereFrames ()[0];
+  savePcd (dir / "in.pcd", input);
+  pcl::PointCloud<pcl::PointXYZ>::Ptr xyz (new pcl::PointCloud<pcl::PointXYZ>);
+  pcl::fromPCLPointCloud2 (input, *xyz);
+  std::map<std::string, std::vector<float>> y;
+  for (const std::string &value : values)
+  {
+    Filter filter;
+    configure (filter, value);
+    std::vector<std::string> args = {"in.pcd", "out.pcd", step};
+    if (!value.empty ())
+      args.insert (args.end (), {option, value});
+    y[value] = toolMatchesLibrary (dir, args, filter, xyz);
+    EXPECT_FALSE (y[value].empty ()) << option << " " << value;
+  }
+  return y;
+}
+
+/** The help's lines of the option whose line starts with `usage`, up to the next option. */
+std::string
+helpOf (const fs::path &dir, const std::string &usage)
+{
+  const ToolRun help = runTool (dir, {"-h"});
+  const std::size_t from = help.out.find ("  " + usage);
+  if (from == std::string::npos)
+    return "(not in the help: " + help.out + ")";
+  const std::size_t to = help.out.find ("\n  -", from + 1);
+  return help.out.substr (from, to - from);
+}
+
 TEST (Cli, AdaptiveSupportReachesTheFilter)
 {
   // -adaptive_support 0 gives the library's result with setAdaptiveSupport (false), 1 and
   // no value its default (on); the two differ, and the help tells the default.
   const fs::path dir = testFolder ();
-  const PCLPointCloud2 input = sphereFrames ()[0];
-  savePcd (dir / "in.pcd", input);
-  pcl::PointCloud<pcl::PointXYZ>::Ptr xyz (new pcl::PointCloud<pcl::PointXYZ>);
-  pcl::fromPCLPointCloud2 (input, *xyz);
-  std::map<std::string, std::vector<float>> y;  // the tool's results
-  for (const std::string value : {"", "0", "1"})
-  {
-    pcl_graph_denoise::GraphTikhonovSmoothing<pcl::PointXYZ> filter;
-    if (value == "0")
-      filter.setAdaptiveSupport (false);
-    std::vector<std::string> args = {"in.pcd", "out.pcd", "-tikhonov"};
-    if (!value.empty ())
-      args.insert (args.end (), {"-adaptive_support", value});
-    y[value] = toolMatchesLibrary (dir, args, filter, xyz);
-    ASSERT_FALSE (y[value].empty ());
-  }
+  auto y = optionResults<pcl_graph_denoise::GraphTikhonovSmoothing<pcl::PointXYZ>> (
+      dir, "-tikhonov", "-adaptive_support", {"", "0", "1"}, [] (auto &filter, const std::string &value) {
+        if (value == "0")
+          filter.setAdaptiveSupport (false);
+      });
   EXPECT_EQ (y[""], y["1"]);
   EXPECT_NE (y["1"], y["0"]);
   EXPECT_EQ (runTool (dir, {"in.pcd", "out.pcd", "-tikhonov", "-adaptive_support", "maybe"}).code, 2);
-  const ToolRun help = runTool (dir, {"-h"});
-  // The option's lines, up to the next option, tell its default.
-  const std::size_t from = help.out.find ("  -adaptive_support 0|1");
-  ASSERT_NE (from, std::string::npos) << help.out;
-  const std::size_t to = help.out.find ("\n  -", from + 1);
-  EXPECT_NE (help.out.substr (from, to - from).find ("(default: 1)"), std::string::npos) << help.out;
+  const std::string help = helpOf (dir, "-adaptive_support 0|1");
+  EXPECT_NE (help.find ("(default: 1)"), std::string::npos) << help;
+}
+
+TEST (Cli, PatchCoverReachesTheFilter)
+{
+  // -patch_cover N gives the library's result with setPatchCover (N); no value is the
+  // default (3); 0 and 3 differ; a negative or fractional cover is refused; the help
+  // tells the default.
+  const fs::path dir = testFolder ();
+  auto y = optionResults<pcl_graph_denoise::GraphTVSmoothing<pcl::PointXYZ>> (
+      dir, "-tv", "-patch_cover", {"", "0", "3"}, [] (auto &filter, const std::string &value) {
+        if (!value.empty ())
+          filter.setPatchCover (std::stoi (value));
+      });
+  EXPECT_EQ (y[""], y["3"]);
+  EXPECT_NE (y["3"], y["0"]);
+  for (const std::string bad : {"-1", "1.5", "many"})
+    EXPECT_EQ (runTool (dir, {"in.pcd", "out.pcd", "-tv", "-patch_cover", bad}).code, 2) << bad;
+  const std::string help = helpOf (dir, "-patch_cover N");
+  EXPECT_NE (help.find ("(default: 3)"), std::string::npos) << help;
 }
 
 TEST (Cli, SmoothingReportsEachPassGraphAsItIsBuilt)

@@ -1215,6 +1215,99 @@ TEST (Normals, AdaptiveSupportWidensTheFitsOnlyWhereTheSurfaceIsSmoothAtThatScal
              quadricDisplacement (graph, f, f, 0.0, 0, QuadricProjection::BLENDED, QuadricSupport::TWO_RINGS));
 }
 
+TEST (Normals, PatchCentresCoverEveryVertexAndBlendingThemLosesLittle)
+{
+  // A noisy sphere and the surface of a noisy cube (edges and corners): quadrics at the
+  // patch centres only, blended, against a quadric at every vertex.
+  std::mt19937 rng (76);
+  std::normal_distribution<double> g (0.0, 1.0);
+  std::uniform_real_distribution<double> u (-1.0, 1.0);
+  const Eigen::Index n = 6000;
+  const double noise = 0.01;
+  Signal3 sphere (n, 3), cube (n, 3);
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    const Eigen::Vector3d s = Eigen::Vector3d (g (rng), g (rng), g (rng)).normalized ();
+    sphere.row (i) = (s + noise * Eigen::Vector3d (g (rng), g (rng), g (rng))).transpose ();
+    Eigen::Vector3d c (u (rng), u (rng), u (rng));
+    const int face = static_cast<int> (i % 6);
+    c (face / 2) = face % 2 ? 1.0 : -1.0;
+    cube.row (i) = (c + noise * Eigen::Vector3d (g (rng), g (rng), g (rng))).transpose ();
+  }
+  const auto toSphere = [] (const Eigen::Vector3d &p) { return std::abs (p.norm () - 1.0); };
+  const auto toCube = [] (const Eigen::Vector3d &p) {
+    const Eigen::Vector3d a = p.cwiseAbs ();
+    if ((a.array () <= 1.0).all ())
+      return 1.0 - a.maxCoeff ();
+    return (a.array () - 1.0).max (0.0).matrix ().norm ();
+  };
+  for (int which = 0; which < 2; ++which)
+  {
+    const Signal3 &points = which == 0 ? sphere : cube;
+    const PointGraph graph = buildKnnGraph (points.cast<float> ());
+    const Signal3 f = inVertexOrder (graph, points);
+    const std::size_t count = graph.numVertices ();
+
+    // The rule: every vertex carries a patch (cover 0), or it has at least `cover`
+    // neighbours that do; a vertex carries one when fewer than `cover` of its neighbours
+    // before it did. The larger the cover, the more centres.
+    EXPECT_EQ (patchCentres (graph, 0), std::vector<std::uint8_t> (count, 1));
+    EXPECT_THROW (patchCentres (graph, -1), std::invalid_argument);
+    std::size_t previous = 0;
+    for (const int cover : {1, 2, 3, 5})
+    {
+      const std::vector<std::uint8_t> centre = patchCentres (graph, cover);
+      ASSERT_EQ (centre.size (), count);
+      std::size_t centres = 0;
+      for (std::size_t v = 0; v < count; ++v)
+      {
+        int around = 0, before = 0;
+        for (std::uint64_t e = graph.row_ptr[v]; e < graph.row_ptr[v + 1]; ++e)
+        {
+          around += centre[graph.col[e]];
+          before += centre[graph.col[e]] && graph.col[e] < v;
+        }
+        if (centre[v])
+          EXPECT_LT (before, cover) << "vertex " << v;
+        else
+          EXPECT_GE (before, cover) << "vertex " << v;
+        EXPECT_TRUE (centre[v] || around >= cover);
+        centres += centre[v];
+      }
+      EXPECT_GT (centres, previous) << "cover " << cover;
+      EXPECT_LT (centres, count) << "cover " << cover;
+      previous = centres;
+    }
+
+    const auto error = [&] (const Signal3 &out) {
+      double sum = 0.0;
+      for (Eigen::Index v = 0; v < out.rows (); ++v)
+        sum += (which == 0 ? toSphere : toCube) (out.row (v).transpose ());
+      return sum / double (out.rows ());
+    };
+    const auto blend = [&] (int cover, int threads) {
+      return quadricDisplacement (graph, f, f, noise, threads, QuadricProjection::BLENDED,
+                                  QuadricSupport::ADAPTIVE, cover);
+    };
+    const Signal3 every = blend (0, 0), shared = blend (3, 1);
+    EXPECT_EQ (every, quadricDisplacement (graph, f, f, noise, 0, QuadricProjection::BLENDED,
+                                           QuadricSupport::ADAPTIVE));
+    EXPECT_EQ (shared, blend (3, 2));
+    EXPECT_NE (shared, every);
+    std::printf ("%s: mean distance, a quadric at every vertex %.4e, at the centres of cover 3 "
+                 "%.4e (noisy %.4e)\n",
+                 which == 0 ? "sphere" : "cube", error (every), error (shared), error (f));
+    EXPECT_LT (error (shared), 1.03 * error (every));
+    EXPECT_LT (error (shared), 0.5 * error (f));
+    // Without a blend every point needs its own quadric: the cover changes nothing.
+    EXPECT_EQ (quadricDisplacement (graph, f, f, noise, 0, QuadricProjection::OWN_PATCH,
+                                    QuadricSupport::ADAPTIVE, 3),
+               quadricDisplacement (graph, f, f, noise, 0, QuadricProjection::OWN_PATCH,
+                                    QuadricSupport::ADAPTIVE));
+    EXPECT_THROW (blend (-1, 0), std::invalid_argument);
+  }
+}
+
 TEST (Normals, QuadricWithTooFewPointsKeepsTheEstimate)
 {
   Signal3 f (2, 3), x (2, 3);
@@ -1225,6 +1318,11 @@ TEST (Normals, QuadricWithTooFewPointsKeepsTheEstimate)
     EXPECT_EQ (quadricDisplacement (graph, inVertexOrder (graph, f), inVertexOrder (graph, x), 0.0, 0,
                                     projection),
                inVertexOrder (graph, x));
+  // With a cover of 1 the second point carries no quadric and borrows none: it keeps x too.
+  EXPECT_EQ (patchCentres (graph, 1), (std::vector<std::uint8_t>{1, 0}));
+  EXPECT_EQ (quadricDisplacement (graph, inVertexOrder (graph, f), inVertexOrder (graph, x), 0.01, 0,
+                                  QuadricProjection::BLENDED, QuadricSupport::ADAPTIVE, 1),
+             inVertexOrder (graph, x));
 }
 
 TEST (Normals, QuadricIsNotExtrapolatedFromACollapsedPatch)

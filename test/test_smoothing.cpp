@@ -243,6 +243,7 @@ TYPED_TEST (SmoothingContract, InvalidParametersAreNamed)
           {[] (auto &f) { f.setGamma (std::numeric_limits<double>::infinity ()); }, "gamma"},
           {[] (auto &f) { f.setGraphIterations (0); }, "graph iterations"},
           {[] (auto &f) { f.setNumberOfThreads (-1); }, "number of threads"},
+          {[] (auto &f) { f.setPatchCover (-1); }, "patch cover (setPatchCover)"},
           {[] (auto &f) { f.setTolerance (0.0); }, "tolerance"},
           {[&] (auto &f) { f.setTolerance (nan); }, "tolerance"},
           {[] (auto &f) { f.setMaximumIterations (0); }, "maximum iterations"},
@@ -662,6 +663,47 @@ TEST (SmoothingQuality, AdaptiveSupportWidensTheFitsOnlyWhereTheSurfaceIsSmooth)
     EXPECT_EQ (filter->getUsedGamma (), plane_gamma);
     for (std::size_t i = 0; i < plane->size (); ++i)
       ASSERT_TRUE (samePoint ((*plane)[i], (*plane_adaptive)[i])) << name << ", point " << i;
+  }
+}
+
+TEST (SmoothingQuality, PatchCoverBlendsFewerQuadricsForLittleMoreError)
+{
+  // By default (cover 3) a point gets a quadric of its own unless three graph neighbours
+  // before it have one; cover 0 fits one at every point. On a sphere and on the
+  // corrugated square the shared quadrics leave at most 3% more error; the quadric of
+  // the point's own vertex alone (LocalSurface::QUADRIC) needs one everywhere and ignores
+  // the cover.
+  auto sphere = std::make_shared<synthetic::Cloud> (synthetic::noisySphere (5000, 1.0, 0.01, 63));
+  auto bumps = std::make_shared<synthetic::Cloud> (noisyBumps (6000, 0.005, 64));
+  for (int which = 0; which < 2; ++which)
+  {
+    const std::unique_ptr<GraphSmoothing<pcl::PointXYZ>> filter = smoother (which != 0);
+    EXPECT_EQ (filter->getPatchCover (), 3);
+    for (const auto &[cloud, distance] :
+         {std::make_pair (sphere, kToSphere), std::make_pair (bumps, Distance (distanceToBumps))})
+    {
+      filter->setPatchCover (3);
+      const auto shared = run (*filter, cloud);
+      filter->setPatchCover (0);
+      EXPECT_EQ (filter->getPatchCover (), 0);
+      const auto every = run (*filter, cloud);
+      const double shared_error = meanDistance (*shared, distance);
+      const double every_error = meanDistance (*every, distance);
+      std::printf ("%s, %s: a quadric at every point %.6f, cover 3 %.6f\n", which == 0 ? "Tikhonov" : "TV",
+                   cloud == sphere ? "sphere" : "corrugated square", every_error, shared_error);
+      EXPECT_LT (shared_error, 1.03 * every_error);
+      std::size_t moved = 0;
+      for (std::size_t i = 0; i < shared->size (); ++i)
+        moved += !samePoint ((*shared)[i], (*every)[i]);
+      EXPECT_GT (moved, shared->size () / 2);
+    }
+    filter->setLocalSurface (LocalSurface::QUADRIC);
+    filter->setPatchCover (0);
+    const auto own = run (*filter, sphere);
+    filter->setPatchCover (5);
+    const auto own_cover = run (*filter, sphere);
+    for (std::size_t i = 0; i < own->size (); ++i)
+      ASSERT_TRUE (samePoint ((*own)[i], (*own_cover)[i])) << "point " << i;
   }
 }
 

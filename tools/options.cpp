@@ -77,6 +77,7 @@ const ParameterSpec parameter_specs[] = {
     {"normal_displacement", SMOOTHING_STEPS, ValueType::SWITCH},
     {"local_surface", SMOOTHING_STEPS, ValueType::SURFACE},
     {"adaptive_support", SMOOTHING_STEPS, ValueType::SWITCH},
+    {"patch_cover", SMOOTHING_STEPS, ValueType::COUNT},
     {"shrinkage_correction", SMOOTHING_STEPS, ValueType::SWITCH},
     {"tolerance", SMOOTHING_STEPS, ValueType::POSITIVE},
     {"max_iterations", SMOOTHING_STEPS, ValueType::AT_LEAST_ONE},
@@ -550,6 +551,7 @@ usage (const std::string &program)
   const std::string twicing =
       both (tikhonov.getShrinkageCorrection (), tv.getShrinkageCorrection ());
   const std::string adaptive = both (tikhonov.getAdaptiveSupport (), tv.getAdaptiveSupport ());
+  const std::string cover = both (tikhonov.getPatchCover (), tv.getPatchCover ());
   const std::string tolerance = both (tikhonov.getTolerance (), tv.getTolerance ());
   const std::string iterations =
       both (tikhonov.getMaximumIterations (), tv.getMaximumIterations ());
@@ -636,6 +638,10 @@ usage (const std::string &program)
     << "                          over two, and halve the derived gamma; 0: two rings, in\n"
     << "                          0.6-1.0x the time; quadric local surfaces only (default: "
     << adaptive << ")\n"
+    << "  -patch_cover N          blended quadrics: a point gets a quadric of its own unless N\n"
+    << "                          graph neighbours before it have one; 0: every point, about\n"
+    << "                          0.7% less error for 1.6x the time; >= 0 (default: " << cover
+    << ")\n"
     << "  -shrinkage_correction 0|1\n"
     << "                          twicing against the shrinkage of curved surfaces (default: "
     << twicing << ")\n"

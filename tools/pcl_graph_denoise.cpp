@@ -201,6 +201,8 @@ configure (pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &filter, const Step 
     }
     else if (name == "adaptive_support")
       filter.setAdaptiveSupport (v.number != 0.0);
+    else if (name == "patch_cover")
+      filter.setPatchCover (static_cast<int> (v.number));
     else if (name == "shrinkage_correction")
       filter.setShrinkageCorrection (v.number != 0.0);
     else if (name == "tolerance")

@@ -30,7 +30,8 @@ namespace {
  * state (signals of N x 3 doubles, the normals' and quadric fits' results). The blended
  * quadrics keep every vertex's patch (17 doubles) for a second pass: measured again at
  * 1M points and k = 10 with them, Tikhonov 461 and TV 536, and Tikhonov's a raised by 70
- * to keep the margin. */
+ * to keep the margin; the patch centres of setPatchCover add a flag per point (and four
+ * bytes of counts while they are chosen), within that margin. */
 struct PerPoint
 {
   double a, b;

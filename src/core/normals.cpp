@@ -334,13 +334,37 @@ fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i,
 
 } // namespace
 
+std::vector<std::uint8_t>
+patchCentres (const PointGraph &graph, int cover)
+{
+  if (cover < 0)
+    throw std::invalid_argument ("patchCentres: the cover must be >= 0");
+  const std::size_t n = graph.numVertices ();
+  std::vector<std::uint8_t> centre (n, 1);
+  if (cover == 0)
+    return centre;
+  // How many neighbours of each vertex carry a patch so far.
+  std::vector<std::uint32_t> covered (n, 0);
+  for (std::size_t v = 0; v < n; ++v)
+  {
+    centre[v] = covered[v] < std::uint32_t (cover);
+    if (centre[v])
+      for (std::uint64_t e = graph.row_ptr[v]; e < graph.row_ptr[v + 1]; ++e)
+        ++covered[graph.col[e]];
+  }
+  return centre;
+}
+
 Signal3
 quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x, double noise,
-                     int num_threads, QuadricProjection projection, QuadricSupport support)
+                     int num_threads, QuadricProjection projection, QuadricSupport support,
+                     int patch_cover)
 {
   const std::size_t n = graph.numVertices ();
   if (static_cast<std::size_t> (f.rows ()) != n || static_cast<std::size_t> (x.rows ()) != n)
     throw std::invalid_argument ("quadricDisplacement: signals of the wrong size");
+  if (patch_cover < 0)
+    throw std::invalid_argument ("quadricDisplacement: the patch cover must be >= 0");
   if (!std::isfinite (noise) || !(noise > 0.0))
     noise = 0.0;  // not robust
   const bool blend = projection == QuadricProjection::BLENDED;
@@ -352,6 +376,8 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
   };
   Signal3 out = x;
   std::vector<Patch> patches (blend ? n : 0);
+  // Without a blend every point needs its own patch.
+  const std::vector<std::uint8_t> centre = patchCentres (graph, blend ? patch_cover : 0);
   detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
     std::vector<VertexIndex> ring;
     Samples samples;
@@ -359,6 +385,8 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
     detail::TwoRing two_ring;
     for (std::size_t i = begin; i < end; ++i)
     {
+      if (!centre[i])
+        continue;  // borrows its neighbours' patches
       two_ring.collect (graph, i, ring);
       if (support == QuadricSupport::THREE_RINGS)
         two_ring.grow (graph, ring);
@@ -408,7 +436,7 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
     for (std::size_t i = begin; i < end; ++i)
     {
       const Patch &own = patches[i];
-      if (!own.valid ())
+      if (centre[i] && !own.valid ())
         continue;  // keeps x_i
       two_ring.collect (graph, i, ring);
       const Eigen::Vector3d fi = f.row (i).transpose ();
@@ -433,7 +461,9 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
         sum += w * (fi + patch.move (fi, reach) * patch.normal);
         total += w;
       }
-      // When every patch ignores it, its own surface.
+      // When every patch ignores it, its own surface (a point without one keeps x_i).
+      if (!(total > 0.0) && !own.valid ())
+        continue;
       const Eigen::Vector3d merged = total > 0.0 ? Eigen::Vector3d (sum / total)
                                                  : Eigen::Vector3d (fi + own.move (fi, reach) * own.normal);
       out.row (i) = merged.transpose ();

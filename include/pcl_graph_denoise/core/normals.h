@@ -11,6 +11,9 @@
 
 #include <pcl_graph_denoise/core/graph.h>
 
+#include <cstdint>
+#include <vector>
+
 namespace pcl_graph_denoise {
 namespace core {
 
@@ -45,8 +48,8 @@ enum class QuadricSupport
    *  2 sqrt(6) noise levels (two standard errors per coefficient of a quadric). A larger
    *  support averages more noise where the surface is smooth at that scale; the test
    *  keeps the narrow fit where it bends or ends (an intersection of confidence
-   *  intervals, as in Katkovnik's LPA-ICI). Without a noise level, TWO_RINGS. Not the
-   *  filters' default yet: docs/evaluation.md, section 5. */
+   *  intervals, as in Katkovnik's LPA-ICI). Without a noise level, TWO_RINGS. The
+   *  filters' default (docs/evaluation.md, section 5). */
   ADAPTIVE
 };
 
@@ -67,16 +70,31 @@ enum class QuadricSupport
  *  from x_j, r_j the RMS tangential spread of j's rings, e the distance of x_i from j's
  *  surface along its normal: overlapping fits average out their own noise (as patch
  *  estimates are aggregated in image denoising), and a patch of another sheet drops
- *  out. A vertex with fewer than 10 points in its rings has the plane as its surface;
+ *  out. With a `patch_cover` c > 0 (BLENDED only), only the vertices of patchCentres (c)
+ *  carry a patch, and a point blends those of its two rings; when none of them counts
+ *  for it (or a centre has no surface of its own) it keeps x_i. A vertex with fewer
+ *  than 10 points in its rings has the plane as its surface;
  *  with fewer than 3, none, and keeps x_i. Each move along a normal is limited, with a
  *  noise level, to |f_i - x_i| plus three noise levels. f and x are in the graph's
  *  vertex order; the result is independent of the number of threads.
- *  \throws std::invalid_argument when the sizes differ. */
+ *  \throws std::invalid_argument when the sizes differ or patch_cover < 0. */
 Signal3
 quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x, double noise,
                      int num_threads = 0,
                      QuadricProjection projection = QuadricProjection::OWN_PATCH,
-                     QuadricSupport support = QuadricSupport::TWO_RINGS);
+                     QuadricSupport support = QuadricSupport::TWO_RINGS, int patch_cover = 0);
+
+/** \brief The vertices that carry a quadric in quadricDisplacement's blend (1) and those
+ *  that only borrow their neighbours' (0), for a cover c: in vertex order, a vertex
+ *  carries one unless c of its graph neighbours already do, so that every vertex
+ *  carries one or has at least c neighbours that do. c = 0: every vertex. Where the
+ *  fits overlap this much, blending fewer of them loses little: on the calibration set
+ *  of bench/calibrate_gamma (96 clouds), c = 3 fits about 40% of the vertices, for
+ *  0.7% more error than a fit at every vertex (docs/evaluation.md, section 5).
+ *  Independent of the number of threads (one pass in order).
+ *  \throws std::invalid_argument when c < 0. */
+std::vector<std::uint8_t>
+patchCentres (const PointGraph &graph, int cover);
 
 /** \brief Parameters of surfaceOffsets. */
 struct SurfaceOffsetParams

@@ -64,6 +64,8 @@ GraphSmoothing<PointT>::invalidParameters () const
   if (graph_iterations_ < 1 || graph_iterations_ > kMaxGraphIterations)
     return "graph iterations (setGraphIterations) = " + std::to_string (graph_iterations_) +
            ": must be in [1, " + std::to_string (kMaxGraphIterations) + "]";
+  if (patch_cover_ < 0)
+    return "patch cover (setPatchCover) = " + std::to_string (patch_cover_) + ": must be >= 0";
   if (num_threads_ < 0)
     return "number of threads (setNumberOfThreads) = " + std::to_string (num_threads_) +
            ": must be >= 0";
@@ -254,7 +256,8 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
                                            ? core::QuadricProjection::OWN_PATCH
                                            : core::QuadricProjection::BLENDED,
                                        adaptive_support_ ? core::QuadricSupport::ADAPTIVE
-                                                         : core::QuadricSupport::TWO_RINGS);
+                                                         : core::QuadricSupport::TWO_RINGS,
+                                       patch_cover_);
       else if (normal_displacement_)
         x = core::normalDisplacement (signal, x, core::estimateNormals (g, smoothed, num_threads_));
       return x;
