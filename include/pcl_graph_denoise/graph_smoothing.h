@@ -179,8 +179,8 @@ public:
   getNormalDisplacement () const { return normal_displacement_; }
 
   /** \brief The surface each point moves onto with normal displacement on.
-   *  LocalSurface::BLENDED_QUADRICS (default): around every vertex (or those of
-   *  setPatchCover), a quadric height field fitted over two graph rings of the smoothed points (three where that agrees:
+   *  LocalSurface::BLENDED_QUADRICS (default): around the vertices that setPatchCover
+   *  picks (about 40% of them), a quadric height field fitted over two graph rings of the smoothed points (three where that agrees:
    *  setAdaptiveSupport, on by default), robustly re-weighted by the estimated noise level so that the
    *  far side of a thin wall or the other face at an edge does not pull it; each point moves onto the weighted mean of the quadrics of
    *  its two rings (weights: its distance to each patch's centre and to its surface), so
