@@ -219,7 +219,8 @@ public:
    *  neighbours already have one, and each point blends the quadrics of its two rings
    *  (core::patchCentres). The fits overlap so much that blending about 40% of them
    *  costs little: on the calibration set 0.7% more error than a quadric at every
-   *  vertex (0 = every vertex), for 0.6 times the smoothing's time at 1,000,000 points.
+   *  vertex (0 = every vertex), for 0.55-0.6 times Tikhonov's time and 0.75 times TV's
+   *  on a 1,000,000-point sphere.
    *  Valid: >= 0. Applies to LocalSurface::BLENDED_QUADRICS only. docs/evaluation.md
    *  section 5 has its measurements. */
   inline void

@@ -200,12 +200,11 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
         for (std::size_t i = begin; i < end; ++i)
         {
           const std::uint64_t out = directed.ptr[i + 1] - directed.ptr[i];
-          const auto first = graph.col.begin () + graph.row_ptr[i];
-          const auto last = graph.col.begin () + graph.row_ptr[i + 1];
+          VertexIndex *const row = graph.col.data () + graph.row_ptr[i];
+          const std::size_t size = graph.row_ptr[i + 1] - graph.row_ptr[i];
           const auto from = incoming.begin () + (graph.row_ptr[i] - directed.ptr[i]);
-          std::copy (from, from + (last - first - out), first + out);
-          const auto size = static_cast<std::size_t> (last - first);
-          detail::smallestFirst (graph.col.data () + graph.row_ptr[i], size, size);  // sorts it
+          std::copy (from, from + (size - out), row + out);
+          detail::smallestFirst (row, size, size);  // sorts the row
           for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
             graph.weight[e] = gaussianWeight (
                 squaredDistance (points, static_cast<VertexIndex> (i), graph.col[e]), sigma);
