@@ -447,6 +447,14 @@ TEST (Cli, HelpListsEveryOptionWithItsDefault)
     EXPECT_NE (run.out.find (expected.str ()), std::string::npos) << expected.str ();
     expected.str ("");
     expected << "(default: " << tikhonov.getTolerance () << " -tikhonov, " << tv.getTolerance ()
+             << " -tv;";
+    EXPECT_NE (run.out.find (expected.str ()), std::string::npos) << expected.str ();
+    expected.str ("");
+    pcl_graph_denoise::GraphTikhonovSmoothing<pcl::PointXYZ> plain_tikhonov;
+    pcl_graph_denoise::GraphTVSmoothing<pcl::PointXYZ> plain_tv;
+    plain_tikhonov.setNormalDisplacement (false);
+    plain_tv.setNormalDisplacement (false);
+    expected << "plane: " << plain_tikhonov.getTolerance () << " -tikhonov, " << plain_tv.getTolerance ()
              << " -tv)";
     EXPECT_NE (run.out.find (expected.str ()), std::string::npos) << expected.str ();
     expected.str ("");

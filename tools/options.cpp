@@ -553,6 +553,11 @@ usage (const std::string &program)
   const std::string adaptive = both (tikhonov.getAdaptiveSupport (), tv.getAdaptiveSupport ());
   const std::string cover = both (tikhonov.getPatchCover (), tv.getPatchCover ());
   const std::string tolerance = both (tikhonov.getTolerance (), tv.getTolerance ());
+  GraphTikhonovSmoothing<pcl::PointXYZ> plain_tikhonov;  // the paper's: no quadrics
+  GraphTVSmoothing<pcl::PointXYZ> plain_tv;
+  plain_tikhonov.setNormalDisplacement (false);
+  plain_tv.setNormalDisplacement (false);
+  const std::string plain_tolerance = both (plain_tikhonov.getTolerance (), plain_tv.getTolerance ());
   const std::string iterations =
       both (tikhonov.getMaximumIterations (), tv.getMaximumIterations ());
   const char *solver = tikhonov.getSolver () == core::TikhonovSolver::CHOLMOD ? "cholmod" : "cg";
@@ -646,8 +651,9 @@ usage (const std::string &program)
     << "                          twicing against the shrinkage of curved surfaces (default: "
     << twicing << ")\n"
     << "  -tolerance X            solver stop: CG relative residual (-tikhonov), relative\n"
-    << "                          primal-dual gap (-tv); > 0\n"
-    << "                          (default: " << tolerance << ")\n"
+    << "                          primal-dual gap (-tv); > 0 (default: " << tolerance << ";\n"
+    << "                          without quadrics, -normal_displacement 0 or -local_surface\n"
+    << "                          plane: " << plain_tolerance << ")\n"
     << "  -max_iterations N       solver iterations per pass; >= 1\n"
     << "                          (default: " << iterations << ")\n"
     << "  -solver cg|cholmod      Tikhonov only (default: " << solver << ")\n"

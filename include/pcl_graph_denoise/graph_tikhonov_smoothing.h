@@ -34,8 +34,13 @@ public:
   using Ptr = std::shared_ptr<GraphTikhonovSmoothing<PointT>>;  ///< shared pointer, as PCL's filters
   using ConstPtr = std::shared_ptr<const GraphTikhonovSmoothing<PointT>>;  ///< shared pointer to const
 
+  /** \brief The default tolerance where quadrics are fitted (setTolerance): on the
+   *  calibration set the same error as with the solver's 1e-5, within 0.2% on every cloud. */
+  static constexpr double kFittedTolerance = 1e-4;
+
   GraphTikhonovSmoothing ()
-  : GraphSmoothing<PointT> (core::TikhonovParams{}.tolerance, core::TikhonovParams{}.max_iterations)
+  : GraphSmoothing<PointT> (core::TikhonovParams{}.tolerance, kFittedTolerance,
+                            core::TikhonovParams{}.max_iterations)
   {
     filter_name_ = "GraphTikhonovSmoothing";
   }

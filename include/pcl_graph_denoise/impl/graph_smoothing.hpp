@@ -69,8 +69,9 @@ GraphSmoothing<PointT>::invalidParameters () const
   if (num_threads_ < 0)
     return "number of threads (setNumberOfThreads) = " + std::to_string (num_threads_) +
            ": must be >= 0";
-  if (!(std::isfinite (tolerance_) && tolerance_ > 0.0))
-    return "tolerance (setTolerance) = " + std::to_string (tolerance_) + ": must be finite and > 0";
+  if (!(std::isfinite (getTolerance ()) && getTolerance () > 0.0))
+    return "tolerance (setTolerance) = " + std::to_string (getTolerance ()) +
+           ": must be finite and > 0";
   if (max_iterations_ < 1)
     return "maximum iterations (setMaximumIterations) = " + std::to_string (max_iterations_) +
            ": must be >= 1";
@@ -217,7 +218,7 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
                  "not move); each is smoothed on its own.\n",
                  name.c_str (), count, components_.count, components_.largest,
                  components_.isolated);
-    const bool quadric = normal_displacement_ && local_surface_ != LocalSurface::PLANE;
+    const bool quadric = fitsQuadrics ();
     core::NoiseEstimate estimate;
     if (automatic_gamma_ || quadric)
     {

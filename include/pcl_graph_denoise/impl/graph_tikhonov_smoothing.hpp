@@ -16,7 +16,7 @@ GraphTikhonovSmoothing<PointT>::smooth (const core::PointGraph &graph, const cor
 {
   core::TikhonovParams params;
   params.solver = solver_;
-  params.tolerance = this->tolerance_;
+  params.tolerance = this->getTolerance ();
   params.max_iterations = this->max_iterations_;
   params.num_threads = this->num_threads_;
   params.progress = this->solverProgress ();

@@ -16,7 +16,7 @@ GraphTVSmoothing<PointT>::smooth (const core::PointGraph &graph, const core::Sig
 {
   core::TotalVariationParams params;
   params.norm = norm_;
-  params.tolerance = this->tolerance_;
+  params.tolerance = this->getTolerance ();
   params.max_iterations = this->max_iterations_;
   params.num_threads = this->num_threads_;
   params.progress = this->solverProgress ();
