@@ -645,7 +645,7 @@ usage (const std::string &program)
     << adaptive << ")\n"
     << "  -patch_cover N          blended quadrics: a point gets a quadric of its own unless N\n"
     << "                          graph neighbours before it have one; 0: every point, about\n"
-    << "                          0.7% less error for 1.3-1.8x the time; >= 0 (default: " << cover
+    << "                          0.7% less error for 1.4-1.7x the time; >= 0 (default: " << cover
     << ")\n"
     << "  -shrinkage_correction 0|1\n"
     << "                          twicing against the shrinkage of curved surfaces (default: "
