@@ -263,7 +263,7 @@ public:
   inline double
   getTolerance () const
   {
-    return tolerance_set_ ? tolerance_ : fitsQuadrics () ? fitted_tolerance_ : tolerance_;
+    return !tolerance_set_ && fitsQuadrics () ? fitted_tolerance_ : tolerance_;
   }
 
   /** \brief Solver iteration cap per pass (Tikhonov default 1000, TV 500); a capped

@@ -69,9 +69,8 @@ GraphSmoothing<PointT>::invalidParameters () const
   if (num_threads_ < 0)
     return "number of threads (setNumberOfThreads) = " + std::to_string (num_threads_) +
            ": must be >= 0";
-  if (!(std::isfinite (getTolerance ()) && getTolerance () > 0.0))
-    return "tolerance (setTolerance) = " + std::to_string (getTolerance ()) +
-           ": must be finite and > 0";
+  if (const double tolerance = getTolerance (); !(std::isfinite (tolerance) && tolerance > 0.0))
+    return "tolerance (setTolerance) = " + std::to_string (tolerance) + ": must be finite and > 0";
   if (max_iterations_ < 1)
     return "maximum iterations (setMaximumIterations) = " + std::to_string (max_iterations_) +
            ": must be >= 1";
