@@ -186,6 +186,27 @@ bruteKnnEdgesFloat (const PointMatrix &p, int k, const std::vector<VertexIndex> 
 
 } // namespace
 
+TEST (GaussianWeight, IsTheKernelWithItsLimits)
+{
+  for (const double sigma : {1e-3, 1.0, 250.0})
+    for (double t = 0.0; t <= 86.0; t += 0.37)  // t = d2 / (2 sigma^2)
+    {
+      const double d2 = 2.0 * sigma * sigma * t;
+      const double expected = std::exp (-t);
+      // Within a few ulps, plus the single-precision rounding of the exponent t.
+      EXPECT_NEAR (gaussianWeight (d2, sigma), expected, (3e-7 + 1.2e-7 * t) * expected)
+          << sigma << " " << t;
+    }
+  // Coincident points weigh 1 for any sigma; sigma 0 is the kernel's limit.
+  EXPECT_EQ (gaussianWeight (0.0, 0.5), 1.0f);
+  EXPECT_EQ (gaussianWeight (0.0, 0.0), 1.0f);
+  EXPECT_EQ (gaussianWeight (1e-30, 0.0), 0.0f);
+  // Weights that single precision could only hold as subnormals are 0, never negative.
+  EXPECT_EQ (gaussianWeight (2.0 * 90.0, 1.0), 0.0f);
+  EXPECT_EQ (gaussianWeight (1e30, 1.0), 0.0f);
+  EXPECT_GT (gaussianWeight (2.0 * 86.0, 1.0), 0.0f);
+}
+
 TEST (KnnGraph, MatchesBruteForceWithOutliersFarPointsAndUnevenDensity)
 {
   // The search settles most points on a grid of cells and the rest in a k-d tree: each

@@ -234,9 +234,11 @@ struct DistinctPoints
 DistinctPoints
 distinctPoints (const PointMatrix &points);
 
-/** \brief Gaussian edge weight exp(-d2 / (2 sigma^2)) of a squared length d2.
- *  Coincident points (d2 == 0) weigh 1 for any sigma; with sigma == 0 every other
- *  edge weighs 0 (the limit of the kernel). */
+/** \brief Gaussian edge weight exp(-d2 / (2 sigma^2)) of a squared length d2, in
+ *  single precision as the graph stores it (the graphs compute the same weights
+ *  vectorised, to within an ulp). Coincident points (d2 == 0) weigh 1 for any sigma;
+ *  with sigma == 0 every other edge weighs 0 (the limit of the kernel), as does every
+ *  edge whose weight would be below the smallest normal float (d2 > 174 sigma^2). */
 float
 gaussianWeight (double squared_distance, double sigma);
 
