@@ -416,6 +416,71 @@ TEST (BadInput, PointsSpanningMoreThan1e18GiveAnError)
     expectSmoothed (run (kind, big), *big);
 }
 
+TEST (BadInput, PointsSpanningLessThan1e15GiveAnError)
+{
+  // Their neighbours' squared distances would be subnormal in single precision or 0
+  // (regression: epsilon, theta and gamma came out 0, no outlier was removed and the
+  // smoothers moved the points anyway, without a word).
+  for (const float scale : {1e-17f, 1e-22f, 1e-30f})
+  {
+    auto tiny = sphere (200);
+    synthetic::addUniformOutliers (*tiny, 0.05, 0.5, 4);
+    for (auto &p : *tiny)
+      p.getVector3fMap () *= scale;
+    for (const Kind kind : kEveryFilter)
+      expectError (run (kind, tiny), "the points span only");
+  }
+  // Points that all coincide span nothing and are not an error (IdenticalPoints above);
+  // 1e-12 is far enough from the limit: the scaled result (MicrometreCoordinates above).
+  auto small = sphere (200);
+  for (auto &p : *small)
+    p.getVector3fMap () *= 1e-12f;
+  expectSplit (run (Kind::OUTLIERS, small), *small);
+  for (const Kind kind : kSmoothers)
+    EXPECT_GT (expectSmoothed (run (kind, small), *small), 150u);
+}
+
+TEST (BadInput, AFailedCallReportsNoUsedValues)
+{
+  // After a call that fails, the getters tell nothing of an earlier call.
+  auto cloud = sphere (300);
+  Outliers outliers;
+  outliers.setInputCloud (cloud);
+  pcl::Indices kept;
+  outliers.filter (kept);
+  ASSERT_GT (outliers.getUsedRadius (), 0.0);
+  ASSERT_GT (outliers.getUsedDegreeThreshold (), 0.0);
+  outliers.setIndices (std::make_shared<pcl::Indices> (pcl::Indices{0, 1, 5000}));
+  ::testing::internal::CaptureStderr ();
+  outliers.filter (kept);
+  ::testing::internal::GetCapturedStderr ();
+  EXPECT_TRUE (kept.empty ());
+  EXPECT_EQ (outliers.getUsedRadius (), 0.0);
+  EXPECT_EQ (outliers.getUsedSigma (), 0.0);
+  EXPECT_EQ (outliers.getUsedDegreeThreshold (), 0.0);
+  EXPECT_EQ (outliers.getUsedResidualScale (), 0.0);
+  GraphTikhonovSmoothing<pcl::PointXYZ> tikhonov;
+  GraphTVSmoothing<pcl::PointXYZ> tv;
+  for (Smoothing *filter : {static_cast<Smoothing *> (&tikhonov), static_cast<Smoothing *> (&tv)})
+  {
+    Cloud out;
+    filter->setInputCloud (cloud);
+    filter->filter (out);
+    ASSERT_GT (filter->getUsedGamma (), 0.0);
+    ASSERT_GT (filter->getSolverReport ().iterations, 0);
+    filter->setKSearch (0);
+    ::testing::internal::CaptureStderr ();
+    filter->filter (out);
+    ::testing::internal::GetCapturedStderr ();
+    EXPECT_TRUE (out.empty ());
+    EXPECT_EQ (filter->getUsedGamma (), 0.0);
+    EXPECT_EQ (filter->getUsedSigma (), 0.0);
+    EXPECT_EQ (filter->getEstimatedNoise (), 0.0);
+    EXPECT_EQ (filter->getSolverReport ().iterations, 0);
+    EXPECT_EQ (filter->getGraphComponents ().count, 0u);
+  }
+}
+
 // ---- Neighbour count ------------------------------------------------------------------
 
 TEST (BadInput, KAtLeastTheNumberOfPointsIsTheCompleteGraph)
@@ -570,12 +635,16 @@ TEST (BadInput, HugeSmoothingParametersGiveDefinedResultsOrAnError)
     // Sigma beyond every distance (every weight 1), a tolerance met at once: defined.
     for (const SmoothingSetup &setup : std::vector<SmoothingSetup>{
              [] (Smoothing &f) { f.setSigma (1e300); },
-             [] (Smoothing &f) { f.setSigma (1e-300); },
              [] (Smoothing &f) { f.setTolerance (1e300); }})
     {
       const Outcome o = run (kind, cloud, nullptr, setup);
       EXPECT_GT (expectSmoothed (o, *cloud), 0u) << o.what ();
     }
+    // Sigma below every distance: every weight 0, no edge, each point on its own and
+    // left where it is, without an error.
+    const Outcome apart = run (kind, cloud, nullptr, [] (Smoothing &f) { f.setSigma (1e-300); });
+    EXPECT_EQ (expectSmoothed (apart, *cloud), 0u) << apart.what ();
+    EXPECT_TRUE (apart.err.empty ()) << apart.what ();
     // INT_MAX passes would run for ever: an error (regression: it was accepted).
     expectError (run (kind, cloud, nullptr, [] (Smoothing &f) { f.setGraphIterations (INT_MAX); }),
                  "must be in [1, 1000]");

@@ -258,7 +258,14 @@ TEST (KnnGraph, MatchesBruteForceWithOutliersFarPointsAndUnevenDensity)
       std::set<std::pair<int, int>> got;
       for (const auto &e : edgesInCallerOrder (graph))
         got.insert (e.first);
-      EXPECT_EQ (got, bruteKnnEdgesFloat (cloud.second, k, graph.order))
+      // The k-NN links, but for those whose weight underflows to 0 (the far points'):
+      // the graph leaves them out.
+      std::set<std::pair<int, int>> expected;
+      for (const auto &e : bruteKnnEdgesFloat (cloud.second, k, graph.order))
+        if (gaussianWeight (dist2 (cloud.second, e.first, e.second), graph.sigma) > 0.0f)
+          expected.insert (e);
+      EXPECT_EQ (got, expected) << cloud.first << ", k = " << k;
+      EXPECT_EQ (std::count (graph.weight.begin (), graph.weight.end (), 0.0f), 0)
           << cloud.first << ", k = " << k;
       expectRowsSortedWithoutRepeats (graph,
                                       cloud.first + std::string (", k = ") + std::to_string (k));
@@ -463,6 +470,37 @@ TEST (SpatioTemporalGraph, DegenerateSequencesAndInvalidParameters)
   params = {};
   params.sigma = std::numeric_limits<double>::infinity ();
   EXPECT_THROW (buildSpatioTemporalGraph ({p}, params), std::invalid_argument);
+}
+
+TEST (KnnGraph, AnIsolatedFarPointSetsNoScaleAndKeepsNoWeightlessLink)
+{
+  // A plane spaced 0.01 apart and a point 1,000 units away: the far point's links weigh
+  // 0 and are left out, and its distances do not enter the spacing (with them, a plain
+  // mean made theta 75 times the plane's).
+  std::mt19937 rng (9);
+  std::uniform_real_distribution<float> jitter (-0.001f, 0.001f);  // no ties
+  PointMatrix plane (900, 3), both (901, 3);
+  for (int i = 0; i < 900; ++i)
+    plane.row (i) << 0.01f * float (i % 30) + jitter (rng), 0.01f * float (i / 30) + jitter (rng),
+        jitter (rng);
+  both.topRows (900) = plane;
+  both.row (900) << 1000.0f, 0.1f, 0.0f;
+  const PointGraph alone = buildKnnGraph (plane), g = buildKnnGraph (both);
+  EXPECT_NEAR (g.spacing, alone.spacing, 1e-12 * alone.spacing);
+  EXPECT_NEAR (g.sigma, alone.sigma, 1e-12 * alone.sigma);
+  EXPECT_EQ (std::count (g.weight.begin (), g.weight.end (), 0.0f), 0);
+  const auto with = edgesInCallerOrder (g), without = edgesInCallerOrder (alone);
+  ASSERT_EQ (with.size (), without.size ());  // the far point: no link
+  for (auto a = with.begin (), b = without.begin (); a != with.end (); ++a, ++b)
+  {
+    ASSERT_EQ (a->first, b->first);
+    EXPECT_NEAR (a->second, b->second, 1e-6);
+  }
+  // The same in a sequence's graph.
+  SpatioTemporalGraphParams sequence;
+  const PointGraph frames = buildSpatioTemporalGraph ({both, both}, sequence);
+  EXPECT_NEAR (frames.spacing, alone.spacing, 1e-12 * alone.spacing);
+  EXPECT_EQ (std::count (frames.weight.begin (), frames.weight.end (), 0.0f), 0);
 }
 
 TEST (KnnGraph, IsSymmetricSortedAndLoopFree)

@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <random>
 #include <set>
 
 using pcl_graph_denoise::GraphDegreeOutlierRemoval;
@@ -303,6 +304,40 @@ TEST (OutlierRemoval, AbsoluteThresholdIsApplied)
   pcl::Indices same;
   filter.filter (same);
   EXPECT_EQ (same, automatic);
+}
+
+TEST (OutlierRemoval, AutomaticThresholdWithMoreThanAQuarterIsolated)
+{
+  // 300 uniform outliers around a 400-point plane: more than a quarter of the points have
+  // no neighbour within epsilon, the first quartile of the degrees is 0, and a threshold
+  // of 0 removed nothing (regression). The others' quartile sets it, with a warning.
+  std::mt19937 rng (2);
+  std::uniform_real_distribution<float> u (-1.0f, 1.0f);
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  for (int i = 0; i < 400; ++i)
+    cloud->push_back (pcl::PointXYZ (0.01f * float (i % 20), 0.01f * float (i / 20), 0.0f));
+  for (int i = 0; i < 300; ++i)
+    cloud->push_back (pcl::PointXYZ (u (rng), u (rng), u (rng)));
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter (true);
+  filter.setInputCloud (cloud);
+  pcl::Indices kept;
+  ::testing::internal::CaptureStderr ();
+  filter.filter (kept);
+  const std::string err = ::testing::internal::GetCapturedStderr ();
+  EXPECT_NE (err.find ("more than a quarter"), std::string::npos) << err;
+  EXPECT_GT (filter.getUsedDegreeThreshold (), 0.0);
+  std::size_t plane = 0, outliers = 0;
+  for (const auto i : kept)
+    (i < 400 ? plane : outliers) += 1;
+  EXPECT_GE (plane, 390u);
+  EXPECT_LE (outliers, 5u);
+  // A ratio of 0 still means no threshold, and no warning.
+  filter.setAutomaticThresholdRatio (0.0);
+  filter.setResidualThreshold (0.0);
+  ::testing::internal::CaptureStderr ();
+  filter.filter (kept);
+  EXPECT_EQ (::testing::internal::GetCapturedStderr (), "");
+  EXPECT_EQ (kept.size (), cloud->size ());
 }
 
 TEST (OutlierRemoval, OutlierFractionRemovesThatManyLowestDegreePoints)

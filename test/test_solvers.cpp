@@ -173,6 +173,44 @@ TEST (Tikhonov, IterationCapIsReported)
   EXPECT_TRUE (x.allFinite ());
 }
 
+TEST (Tikhonov, AFarPointDoesNotLoosenTheStoppingTest)
+{
+  // A noisy plane, with and without a point 10^6 units away (alone in the graph): the
+  // plane's solution is the same to the tolerance. The residual was relative to the
+  // centred norm of the whole signal, which the far point makes 10^6: no iteration ran.
+  std::mt19937 rng (3);
+  std::normal_distribution<float> noise (0.0f, 0.003f);
+  PointMatrix plane (900, 3), both (901, 3);
+  for (int i = 0; i < 900; ++i)
+    plane.row (i) << 0.01f * float (i % 30), 0.01f * float (i / 30), noise (rng);
+  both.topRows (900) = plane;
+  both.row (900) << 1e6f, 0.1f, 0.0f;
+  KnnGraphParams params;
+  params.sigma = 0.01;
+  const PointGraph g_plane = buildKnnGraph (plane, params), g_both = buildKnnGraph (both, params);
+  SolverReport report_plane, report_both;
+  const Signal3 x_plane = solveTikhonov (g_plane, vertexSignal (g_plane, plane), 2.0, {}, &report_plane);
+  const Signal3 x_both = solveTikhonov (g_both, vertexSignal (g_both, both), 2.0, {}, &report_both);
+  EXPECT_GT (report_both.iterations, report_plane.iterations / 2);
+  const Signal3 f_both = vertexSignal (g_both, both);
+  double moved = 0.0, differ = 0.0;
+  for (std::size_t v = 0; v < g_both.numVertices (); ++v)
+  {
+    const std::size_t i = g_both.order[v];
+    if (i == 900)
+    {
+      EXPECT_EQ (x_both.row (v), f_both.row (v));  // alone: where it was
+      continue;
+    }
+    const auto w = std::find (g_plane.order.begin (), g_plane.order.end (), VertexIndex (i)) -
+                   g_plane.order.begin ();
+    moved = std::max (moved, (x_both.row (v) - f_both.row (v)).norm ());
+    differ = std::max (differ, (x_both.row (v) - x_plane.row (w)).norm ());
+  }
+  EXPECT_GT (moved, 0.003);
+  EXPECT_LT (differ, 1e-4);
+}
+
 TEST (Tikhonov, RejectsInvalidInput)
 {
   const Problem p (100);

@@ -126,7 +126,8 @@ public:
 
   /** \brief Chooses tau from the data: tau = ratio x the first quartile of the degrees
    *  of the finite points (a quartile, so that up to a quarter of outliers do not pull it
-   *  down). Selects AUTOMATIC_THRESHOLD (the default rule). Default ratio 0.2.
+   *  down; when more than a quarter have no neighbour at all, the quartile of the others,
+   *  with a PCL_WARN). Selects AUTOMATIC_THRESHOLD (the default rule). Default ratio 0.2.
    *  Valid: >= 0. */
   inline void
   setAutomaticThresholdRatio (double ratio)
@@ -187,7 +188,8 @@ public:
   std::size_t
   estimateMemory (std::size_t num_points) const;
 
-  /** \brief Epsilon used by the last filter() call (after derivation), 0 before. */
+  /** \brief Epsilon used by the last filter() call (after derivation), 0 before and
+   *  after a call that failed (as are the other getUsed values). */
   inline double
   getUsedRadius () const { return used_radius_; }
 

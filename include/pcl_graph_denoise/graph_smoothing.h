@@ -313,7 +313,8 @@ public:
     progress_ = callback;
   }
 
-  /** \brief Gamma used by the last pass of the last filter() call. */
+  /** \brief Gamma used by the last pass of the last filter() call (0 after a call that
+   *  failed, as are the other values it reports). */
   inline double
   getUsedGamma () const { return used_gamma_; }
 

@@ -16,6 +16,7 @@
 #include <pcl/point_cloud.h>
 #include <pcl/types.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -37,7 +38,9 @@ struct GatheredPoints
   pcl::Indices non_finite;
   /** Number of entries of the list that repeat an earlier entry (used once). */
   std::size_t repeated = 0;
-  /** Subtracted from every position (mean of the finite named points). */
+  /** Subtracted from every position: the mean of the finite named points, or their
+   *  per-axis median where a few far points pull the mean away from the rest
+   *  (originOf). */
   Eigen::Vector3d origin = Eigen::Vector3d::Zero ();
   /** Rows of xyz after the named points (addSearchSurface): the other finite points of
    *  the cloud, searched as neighbours only. Rows [0, cloud_index.size ()) are the named
@@ -64,6 +67,40 @@ inline bool
 isFinitePosition (const PointT &p)
 {
   return std::isfinite (p.x) && std::isfinite (p.y) && std::isfinite (p.z);
+}
+
+/** \brief The origin of gathered points, from their mean `mean` (computed in their
+ *  order): the mean, unless along an axis it lies farther from the median than ten times
+ *  the median distance of the points from the median (a few far points pull it there,
+ *  and the rest, centred on it in single precision, would lose their detail: a point 10^9
+ *  units away from a cloud a few units across collapsed it to a few positions); then the
+ *  per-axis median. */
+template <typename PointT>
+Eigen::Vector3d
+originOf (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &rows,
+          const Eigen::Vector3d &mean)
+{
+  if (rows.empty ())
+    return mean;
+  std::vector<double> values (rows.size ());
+  const auto middle = values.begin () + std::ptrdiff_t (values.size () / 2);
+  Eigen::Vector3d median;
+  bool pulled = false;
+  for (int d = 0; d < 3; ++d)
+  {
+    for (std::size_t r = 0; r < rows.size (); ++r)
+    {
+      const PointT &p = cloud[rows[r]];
+      values[r] = d == 0 ? p.x : (d == 1 ? p.y : p.z);
+    }
+    std::nth_element (values.begin (), middle, values.end ());
+    median[d] = *middle;
+    for (double &v : values)
+      v = std::abs (v - median[d]);
+    std::nth_element (values.begin (), middle, values.end ());
+    pulled = pulled || std::abs (mean[d] - median[d]) > 10.0 * *middle;
+  }
+  return pulled ? median : mean;
 }
 
 /** \brief Gathers the finite points of `cloud` named by `indices` (which must be in
@@ -97,7 +134,7 @@ gatherFinitePoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &in
   }
   const auto rows = static_cast<Eigen::Index> (out.cloud_index.size ());
   if (rows > 0)
-    out.origin = sum / double (rows);
+    out.origin = originOf (cloud, out.cloud_index, sum / double (rows));
   out.xyz.resize (rows, 3);
   for (Eigen::Index r = 0; r < rows; ++r)
   {

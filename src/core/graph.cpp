@@ -42,6 +42,11 @@ requireValid (bool ok, const std::string &what)
  *  1.8e19. */
 constexpr double kMaxExtent = 1e18;
 
+/** Smallest extent of points that do not all coincide along the longest axis: below it
+ *  the squared distances between neighbours fall among single precision's subnormals
+ *  (below 1.2e-38) or to 0, and the derived scales with them. */
+constexpr double kMinExtent = 1e-15;
+
 void
 validatePoints (const PointMatrix &points)
 {
@@ -60,6 +65,15 @@ validatePoints (const PointMatrix &points)
                    "the points span %g units along an axis, more than %g: their squared "
                    "distances would overflow single precision",
                    extent.maxCoeff (), kMaxExtent);
+    throw std::invalid_argument (text);
+  }
+  if (extent.maxCoeff () > 0.0 && extent.maxCoeff () < kMinExtent)
+  {
+    char text[160];
+    std::snprintf (text, sizeof (text),
+                   "the points span only %g units, less than %g: their squared distances "
+                   "would underflow single precision (scale the cloud up)",
+                   extent.maxCoeff (), kMinExtent);
     throw std::invalid_argument (text);
   }
 }
@@ -241,6 +255,27 @@ symmetrise (const PointMatrix &points, DirectedLists &directed, double sigma, in
       },
       kBlock);
   directed = DirectedLists ();
+  // A link whose weight underflows to 0 (longer than about 13 theta: an isolated far
+  // point's) carries nothing, and is left out: the rings of the quadrics and of the
+  // noise estimate would reach across it.
+  if (std::find (graph.weight.begin (), graph.weight.end (), 0.0f) == graph.weight.end ())
+    return;
+  std::uint64_t kept = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::uint64_t first = graph.row_ptr[i], last = graph.row_ptr[i + 1];
+    graph.row_ptr[i] = kept;
+    for (std::uint64_t e = first; e < last; ++e)
+      if (graph.weight[e] > 0.0f)
+      {
+        graph.col[kept] = graph.col[e];
+        graph.weight[kept] = graph.weight[e];
+        ++kept;
+      }
+  }
+  graph.row_ptr[n] = kept;
+  graph.col.resize (kept);
+  graph.weight.resize (kept);
 }
 
 /** Per-point mean distance to its k nearest other points (k < n), for the vertices in
@@ -388,7 +423,7 @@ buildKnnGraph (const PointMatrix &points, const KnnGraphParams &params)
   detail::allNearestOthers (ordered, sorted, k, params.num_threads, directed.idx.data (),
                             mean.data ());
   std::vector<std::uint64_t> ().swap (sorted.codes);
-  graph.spacing = std::accumulate (mean.begin (), mean.end (), 0.0) / double (n);
+  graph.spacing = detail::meanSpacing (mean);
   graph.sigma = params.sigma > 0.0 ? params.sigma : graph.spacing / std::sqrt (2.0);
   symmetrise (ordered, directed, graph.sigma, params.num_threads, graph);
   return graph;
@@ -521,23 +556,20 @@ buildSpatioTemporalGraph (const std::vector<PointMatrix> &frames,
       },
       kBlock);
 
-  std::size_t with_neighbours = 0;
-  double sum = 0.0;
+  std::vector<double> spatial_means;
   for (std::size_t v = 0; v < n; ++v)
     if (spatial_k (frame_of[v]) > 0)
-    {
-      sum += mean_spatial[v];
-      ++with_neighbours;
-    }
-  if (with_neighbours == 0 && !directed.idx.empty ())
+      spatial_means.push_back (mean_spatial[v]);
+  graph.spacing = detail::meanSpacing (spatial_means);
+  if (spatial_means.empty () && !directed.idx.empty ())
   {
     // Every frame holds one point: the spacing is the mean length of the temporal links.
+    double sum = 0.0;
     for (std::size_t v = 0; v < n; ++v)
       for (std::uint64_t e = directed.ptr[v]; e < directed.ptr[v + 1]; ++e)
         sum += std::sqrt (squaredDistance (ordered, static_cast<VertexIndex> (v), directed.idx[e]));
-    with_neighbours = directed.idx.size ();
+    graph.spacing = sum / double (directed.idx.size ());
   }
-  graph.spacing = with_neighbours > 0 ? sum / double (with_neighbours) : 0.0;
   graph.sigma = params.sigma > 0.0 ? params.sigma : graph.spacing / std::sqrt (2.0);
   symmetrise (ordered, directed, graph.sigma, params.num_threads, graph);
   return graph;

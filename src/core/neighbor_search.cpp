@@ -692,6 +692,35 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
       256);
 }
 
+namespace {
+
+/** Points whose mean distance to their nearest others exceeds this many times the
+ *  median's are left out of the spacing: isolated far points. */
+constexpr double kFarSpacings = 50.0;
+
+} // namespace
+
+double
+meanSpacing (const std::vector<double> &means)
+{
+  if (means.empty ())
+    return 0.0;
+  std::vector<double> sorted (means);
+  const auto middle = sorted.begin () + std::ptrdiff_t (sorted.size () / 2);
+  std::nth_element (sorted.begin (), middle, sorted.end ());
+  const double cut = *middle > 0.0 ? kFarSpacings * *middle
+                                   : std::numeric_limits<double>::infinity ();
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const double m : means)
+    if (m <= cut)
+    {
+      sum += m;
+      ++count;
+    }
+  return count > 0 ? sum / double (count) : 0.0;
+}
+
 } // namespace detail
 } // namespace core
 } // namespace pcl_graph_denoise

@@ -91,6 +91,14 @@ allNearestOthers (const PointMatrix &points, const MortonSort &sorted, int k, in
                   VertexIndex *indices, double *mean_distances,
                   NearestOthersPaths *paths = nullptr);
 
+/** The spacing of a cloud: the mean of its points' mean distances to their nearest
+ *  others (`means`), without the points whose own exceeds 50 times the median's, whose
+ *  distances tell nothing of the sampling (one point 1,000 units away from a grid spaced
+ *  0.01 apart made the plain mean 75 times the grid's). The plain mean, to the bit, where
+ *  no point is that far; 0 for none. */
+double
+meanSpacing (const std::vector<double> &means);
+
 } // namespace detail
 } // namespace core
 } // namespace pcl_graph_denoise

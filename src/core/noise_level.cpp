@@ -176,10 +176,7 @@ estimateNoise (const PointGraph &graph, const Signal3 &points, int num_threads)
   if (residual.empty ())
     return estimate;
   estimate.two_ring = median (residual);
-  double knn_spacing = 0.0;
-  for (double d : mean_distance)
-    knn_spacing += d;
-  knn_spacing /= double (samples);
+  const double knn_spacing = detail::meanSpacing (mean_distance);
 
   // The level at a noise small against the spacing: the fallback when no spacing can be
   // measured.

@@ -50,7 +50,9 @@ struct PointGraph
   std::vector<float> weight;           ///< w_ij = exp(-|p_i - p_j|^2 / (2 theta^2))
   std::vector<VertexIndex> order;      ///< order[v] = caller's row of vertex v
   double sigma = 0.0;                  ///< theta actually used for the weights
-  double spacing = 0.0;                ///< mean distance of a point to its k nearest neighbours
+  /** Mean distance of a point to its k nearest neighbours, over the points whose own is
+   *  at most 50 times the median's (isolated far points do not count). */
+  double spacing = 0.0;
 
   /** \brief Number of vertices N. */
   std::size_t
@@ -83,7 +85,8 @@ struct KnnGraphParams
   int k = 10;
   /** Gaussian kernel width theta, in the points' units. 0 (default) derives it from
    *  the data: theta = spacing / sqrt(2), spacing = mean k-NN distance (GSPBox's
-   *  convention), so the graph is invariant to the cloud's unit. Valid: >= 0, finite. */
+   *  convention; PointGraph::spacing leaves out isolated far points), so the graph is
+   *  invariant to the cloud's unit. Valid: >= 0, finite. */
   double sigma = 0.0;
   /** Worker threads; 0 = all hardware threads. The result does not depend on it. */
   int num_threads = 0;

@@ -58,7 +58,7 @@ void
 GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
 {
   failed_ = false;
-  used_residual_scale_ = 0.0;
+  used_radius_ = used_sigma_ = used_threshold_ = used_residual_scale_ = 0.0;
   const std::string name = getClassName ();
   const auto invalid = [&] (const char *parameter, double value, const char *range) {
     PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] Invalid %s = %g: must be %s.\n",
@@ -167,6 +167,21 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
       {
         std::nth_element (sorted.begin (), sorted.begin () + count / 4, sorted.end ());
         quartile = sorted[count / 4];
+      }
+      if (quartile == 0.0 && automatic_ratio_ > 0.0)
+      {
+        // More than a quarter of the points have no weighted neighbour: the quartile of
+        // the others (if any), so that those are still removed.
+        sorted.erase (std::remove (sorted.begin (), sorted.end (), 0.0), sorted.end ());
+        if (!sorted.empty ())
+        {
+          std::nth_element (sorted.begin (), sorted.begin () + sorted.size () / 4, sorted.end ());
+          quartile = sorted[sorted.size () / 4];
+          PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] %zu of %zu points have no "
+                    "neighbour within epsilon = %g: more than a quarter, so the automatic "
+                    "threshold comes from the first quartile of the others' degrees.\n",
+                    name.c_str (), count - sorted.size (), count, used_radius_);
+        }
       }
       used_threshold_ = automatic_ratio_ * quartile;
     }

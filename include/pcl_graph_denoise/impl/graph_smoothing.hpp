@@ -98,6 +98,10 @@ void
 GraphSmoothing<PointT>::applyFilter (PointCloud &output)
 {
   const std::string name = getClassName ();
+  // What this call used: nothing until it gets there (a failed call reports nothing).
+  used_gamma_ = used_sigma_ = estimated_noise_ = 0.0;
+  report_ = core::SolverReport{};
+  components_ = core::GraphComponents{};
   const auto fail = [&] () {
     output.clear ();
     output.width = output.height = 0;
@@ -130,9 +134,6 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
   }
 
   output = *input_;
-  used_gamma_ = used_sigma_ = estimated_noise_ = 0.0;
-  report_ = core::SolverReport{};
-  components_ = core::GraphComponents{};
   GatheredPoints gathered = gatherFinitePoints (*input_, *indices_, name.c_str ());
   if (gathered.cloud_index.empty ())
   {
