@@ -211,6 +211,23 @@ TEST (Tikhonov, AFarPointDoesNotLoosenTheStoppingTest)
   EXPECT_LT (differ, 1e-4);
 }
 
+TEST (Tikhonov, MostlyCoincidentRowsStillConverge)
+{
+  // Two thirds of the rows at one position: the robust scale of the stopping test is 0
+  // there, and the centred norm takes over (else nothing but an exact 0 would stop it).
+  std::mt19937 rng (4);
+  std::uniform_real_distribution<float> u (-1.0f, 1.0f);
+  PointMatrix p (900, 3);
+  for (int i = 0; i < 900; ++i)
+    p.row (i) << (i < 600 ? Eigen::RowVector3f::Zero () : Eigen::RowVector3f (u (rng), u (rng), 0.1f * u (rng)));
+  const PointGraph g = buildKnnGraph (p);
+  SolverReport report;
+  const Signal3 x = solveTikhonov (g, vertexSignal (g, p), 1.0, {}, &report);
+  EXPECT_TRUE (report.converged);
+  EXPECT_LT (report.iterations, 200);
+  EXPECT_TRUE (x.allFinite ());
+}
+
 TEST (Tikhonov, RejectsInvalidInput)
 {
   const Problem p (100);

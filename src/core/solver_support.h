@@ -88,7 +88,7 @@ centredNorm (const Signal3 &x, int num_threads)
  *  two agree within a factor of about 1.5 and the cap never applies; a few far points
  *  make the centred norm as large as their distance, and a test relative to it would stop
  *  before the rest of the cloud is solved (a point 10^6 units from a grid 0.3 across: no
- *  iteration at all). */
+ *  iteration at all). Where most rows coincide (a median distance of 0), the centred norm. */
 constexpr double kRobustScaleCap = 4.0;
 
 inline double
@@ -99,9 +99,7 @@ residualScale (const Signal3 &f, int num_threads)
   if (n == 0)
     return centred;
   const std::size_t stride = std::max<std::size_t> (1, n / 20000);
-  std::vector<double> values;
-  for (std::size_t i = 0; i < n; i += stride)
-    values.push_back (0.0);
+  std::vector<double> values ((n + stride - 1) / stride);
   const auto middle = values.begin () + std::ptrdiff_t (values.size () / 2);
   Eigen::Vector3d median;
   for (int c = 0; c < 3; ++c)
@@ -114,7 +112,8 @@ residualScale (const Signal3 &f, int num_threads)
   for (std::size_t i = 0, s = 0; i < n; i += stride, ++s)
     values[s] = (f.row (static_cast<Eigen::Index> (i)).transpose () - median).norm ();
   std::nth_element (values.begin (), middle, values.end ());
-  return std::min (centred, kRobustScaleCap * std::sqrt (double (n)) * *middle);
+  const double robust = kRobustScaleCap * std::sqrt (double (n)) * *middle;
+  return robust > 0.0 ? std::min (centred, robust) : centred;  // 0: most rows coincide
 }
 
 /** Checks shared by the solvers; throws std::invalid_argument. */
