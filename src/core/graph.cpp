@@ -56,24 +56,21 @@ validatePoints (const PointMatrix &points)
   requireValid (points.allFinite (), "points must be finite");
   if (points.rows () == 0)
     return;
-  const Eigen::Vector3d extent = points.colwise ().maxCoeff ().cast<double> ().transpose () -
-                                 points.colwise ().minCoeff ().cast<double> ().transpose ();
-  if (!(extent.maxCoeff () <= kMaxExtent))
+  const double span = (points.colwise ().maxCoeff ().cast<double> () -
+                       points.colwise ().minCoeff ().cast<double> ())
+                          .maxCoeff ();
+  // Too wide and the squared distances overflow; too narrow (but not a single position)
+  // and they underflow.
+  const bool wide = !(span <= kMaxExtent), narrow = span > 0.0 && span < kMinExtent;
+  if (wide || narrow)
   {
-    char text[160];
+    char text[200];
     std::snprintf (text, sizeof (text),
-                   "the points span %g units along an axis, more than %g: their squared "
-                   "distances would overflow single precision",
-                   extent.maxCoeff (), kMaxExtent);
-    throw std::invalid_argument (text);
-  }
-  if (extent.maxCoeff () > 0.0 && extent.maxCoeff () < kMinExtent)
-  {
-    char text[160];
-    std::snprintf (text, sizeof (text),
-                   "the points span only %g units, less than %g: their squared distances "
-                   "would underflow single precision (scale the cloud up)",
-                   extent.maxCoeff (), kMinExtent);
+                   "the points span %s%g units along an axis, %s than %g: their squared "
+                   "distances would %s single precision%s",
+                   narrow ? "only " : "", span, wide ? "more" : "less",
+                   wide ? kMaxExtent : kMinExtent, wide ? "overflow" : "underflow",
+                   narrow ? " (scale the cloud up)" : "");
     throw std::invalid_argument (text);
   }
 }
