@@ -265,13 +265,14 @@ wellConditioned (const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> &ldlt)
 }
 
 /** Fits vertex i's patch to the points of x over `ring` (its two rings, or three),
- *  robustly with a noise level > 0 (quadricDisplacement). `samples` receives the ring's
+ *  robustly with a noise level > 0 (quadricDisplacement). `moments`: vertex i's, holding
+ *  the sums of the ring's first points when an earlier fit used them. `samples` receives the ring's
  *  points in the patch's frame, in the ring's order (count 0 when the patch has no
  *  extent or too few points for a quadric). `fitted`, when given: whether a quadric was
  *  fitted (else the patch is the plane, or invalid). */
 Patch
 fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i, double noise,
-          Samples &samples, bool *fitted = nullptr)
+          detail::RingMoments &moments, Samples &samples, bool *fitted = nullptr)
 {
   if (fitted)
     *fitted = false;
@@ -280,7 +281,7 @@ fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i,
   if (ring.size () < 3)
     return patch;
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-  eig.computeDirect (detail::ringCovariance (x, ring, i));
+  eig.computeDirect (moments.covariance (x, ring));
   patch.support = 0.0;
   patch.origin = x.row (i).transpose ();
   patch.normal = eig.eigenvectors ().col (0);
@@ -391,7 +392,8 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
       if (support == QuadricSupport::THREE_RINGS)
         two_ring.grow (graph, ring);
       bool fitted = false;
-      Patch patch = fitPatch (x, ring, i, noise, samples, &fitted);
+      detail::RingMoments moments (i);
+      Patch patch = fitPatch (x, ring, i, noise, moments, samples, &fitted);
       if (adaptive && fitted)
       {
         // The wider fit where its surface, under the narrower ring's points, stays
@@ -403,7 +405,7 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
         for (std::size_t r = 0; r < narrow_size; ++r)
           narrow_move[r] = quadricHeight (patch.q, samples.a[r], samples.b[r]) - samples.h[r];
         two_ring.grow (graph, ring);
-        const Patch wide = fitPatch (x, ring, i, noise, samples);
+        const Patch wide = fitPatch (x, ring, i, noise, moments, samples);
         if (wide.valid () && samples.count == ring.size ())
         {
           double sum = 0.0;

@@ -127,22 +127,43 @@ private:
   std::vector<std::uint32_t> stamp_;
 };
 
-/** Covariance of the points of `ring` (taken relative to the point `origin`, so that
- *  large coordinates lose no precision). */
+/** The covariance of a ring's points (taken relative to the point `origin`, so that large
+ *  coordinates lose no precision), from running sums that follow the ring as it grows
+ *  (TwoRing::grow appends to it): the three rings' covariance after the two rings' adds
+ *  only the third ring's points, in the same order of sums as summing them all. */
+class RingMoments
+{
+public:
+  explicit RingMoments (std::size_t origin) : origin_ (origin) {}
+
+  /** The covariance of the points of `ring`, whose first points (as many as at the last
+   *  call) are the ones summed then. */
+  Eigen::Matrix3d
+  covariance (const Signal3 &points, const std::vector<VertexIndex> &ring)
+  {
+    for (; count_ < ring.size (); ++count_)
+    {
+      const Eigen::Vector3d d = (points.row (ring[count_]) - points.row (origin_)).transpose ();
+      sum_ += d;
+      second_ += d * d.transpose ();
+    }
+    const double m = double (ring.size ());
+    const Eigen::Vector3d mean = sum_ / m;
+    return second_ / m - mean * mean.transpose ();
+  }
+
+private:
+  std::size_t origin_;
+  std::size_t count_ = 0;
+  Eigen::Vector3d sum_ = Eigen::Vector3d::Zero ();
+  Eigen::Matrix3d second_ = Eigen::Matrix3d::Zero ();
+};
+
+/** Covariance of the points of `ring` (relative to the point `origin`). */
 inline Eigen::Matrix3d
 ringCovariance (const Signal3 &points, const std::vector<VertexIndex> &ring, std::size_t origin)
 {
-  const double m = double (ring.size ());
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero ();
-  Eigen::Matrix3d second = Eigen::Matrix3d::Zero ();
-  for (const VertexIndex j : ring)
-  {
-    const Eigen::Vector3d d = (points.row (j) - points.row (origin)).transpose ();
-    mean += d;
-    second += d * d.transpose ();
-  }
-  mean /= m;
-  return second / m - mean * mean.transpose ();
+  return RingMoments (origin).covariance (points, ring);
 }
 
 } // namespace detail
