@@ -61,6 +61,14 @@ namespace {
 
 constexpr std::size_t kQuadricMinimumRing = 10;  // 6 coefficients, with some redundancy
 constexpr int kRobustIterations = 4;
+/** The robust fit stops early once an iteration after the first moves the fitted surface
+ *  by at most this many noise levels at every point of the ring: the next weights would
+ *  differ by a few percent. On the calibration set (calibrate_gamma --default-only
+ *  --no-risk, 96 clouds) 0.1 gave the same geometric-mean error as always four iterations
+ *  (-0.09% Tikhonov, -0.07% TV, every cloud within 1.2%) in 18% less time for the fits of
+ *  a 1M-point sphere; 0.3 lowered it by 0.7% and 0.5% but raised the noisy cubes' by up to
+ *  2.3%. */
+constexpr double kRobustStop = 0.1;
 /** QuadricSupport::ADAPTIVE: the three-ring fit replaces the two-ring fit when the
  *  root-sum-square distance between their surfaces, under the two-ring points, is at
  *  most this many noise levels times sqrt(6) (this many standard errors per coefficient
@@ -326,9 +334,15 @@ fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i,
     const Basis solved = ldlt.solve (system.rhs ());
     if (!solved.allFinite ())
       break;
+    double change = 0.0;
+    if (robust && iteration > 0)
+      for (std::size_t r = 0; r < samples.count; ++r)
+        change = std::max (change, std::abs (quadricHeight (solved - patch.q, samples.a[r], samples.b[r])));
     patch.q = solved;
     if (fitted)
       *fitted = true;
+    if (robust && iteration > 0 && change <= kRobustStop * noise)
+      break;
   }
   return patch;
 }

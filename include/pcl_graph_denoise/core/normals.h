@@ -57,9 +57,10 @@ enum class QuadricSupport
  *  fitted to the estimate x: for vertex i, the points of x over its two graph rings
  *  (or three: `support`) give a frame (origin x_i, normal = direction of least
  *  variance) and a quadric height field h(u, v) fitted by least squares, robustly:
- *  with `noise` > 0, each of four fits
+ *  with `noise` > 0, each of up to four fits
  *  weights the points by exp(-r^2 / (2 noise^2)) of their residual r to the previous
- *  one (the first: to the plane through x_i), so that points of
+ *  one (the first: to the plane through x_i; from the third on, only while the previous
+ *  fit still moved the surface by more than noise / 10 at some point), so that points of
  *  another sheet (the far side of a thin wall, the other face at a sharp edge) stop
  *  pulling the surface. With QuadricProjection::OWN_PATCH the result is f_i moved along
  *  vertex i's normal to height h at its own (u, v): no tangential drift, and no
