@@ -334,14 +334,19 @@ fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i,
     const Basis solved = ldlt.solve (system.rhs ());
     if (!solved.allFinite ())
       break;
-    double change = 0.0;
-    if (robust && iteration > 0)
-      for (std::size_t r = 0; r < samples.count; ++r)
-        change = std::max (change, std::abs (quadricHeight (solved - patch.q, samples.a[r], samples.b[r])));
+    // From the second fit on: settled once it moved the surface by at most kRobustStop
+    // noise levels at every point.
+    bool settled = robust && iteration > 0;
+    if (settled)
+    {
+      const Basis change = solved - patch.q;
+      for (std::size_t r = 0; r < samples.count && settled; ++r)
+        settled = std::abs (quadricHeight (change, samples.a[r], samples.b[r])) <= kRobustStop * noise;
+    }
     patch.q = solved;
     if (fitted)
       *fitted = true;
-    if (robust && iteration > 0 && change <= kRobustStop * noise)
+    if (settled)
       break;
   }
   return patch;
