@@ -934,27 +934,29 @@ product, so no time; and TV's dual update taken over each row's entries as colum
 compiler vectorises (the same output bit for bit): 5% per iteration, the loop being bound by
 memory traffic rather than arithmetic.
 
-**An early stop for the robust quadric fits (the default since 2026-12-05).** Each fit was four
-least-squares fits, each weighting the ring's points by their residual to the one before; now the
-third and fourth are skipped once a fit moves the surface by at most a tenth of the noise level
-at every point of the ring (the next weights would differ by a few percent). On the calibration
-set kept apart (`calibrate_gamma --default-only --no-risk`, 96 clouds) the geometric-mean error
-went from 0.000136603 to 0.000136481 (Tikhonov) and from 0.000137974 to 0.000137878 (TV), every
-cloud within −1.2% to +0.6%; the quadric step on a noisy 1,000,000-point sphere (σ = 1%, two
-threads, a scratch driver, runs interleaved, best of three) from 3.83–3.95 s to 3.16–3.21 s, and
-the filters with their defaults there (three interleaved runs each) from 8.2–9.5 s to 7.5–8.9 s
-(Tikhonov) and from 15.6–15.9 s to 13.8–15.3 s (TV), errors unchanged to four digits (0.000446
-and 0.000893). The k-NN graph of those points took 0.68 s on that machine (`bench_graph
-1000000`, median of 3): Tikhonov is still 11–13 × it and TV 20–22 × (targets 2 × and 6 ×; the
-machine was slower than in the paragraphs above, where the same filters took 7.3–7.8 s and 12.3
-s). The change came after the last regeneration of the tables of sections 2, 3 and 6
-(2026-12-04; sections 1 and 4 fit no quadrics); by the calibration set it moves them by about
-0.1%. Tried the same day and not taken: fewer fits always, three (−0.9% and
-−0.6% on the calibration set, but the noisy cubes' edges up to +2.0%), two (−1.9% and −0.6%,
-the cubes up to +8.9%: the extra fits are what keeps the other face out at a sharp edge), one
-(+3.6% and +7.4%); a looser stop at 0.3 noise levels (−0.7% and −0.5%, the cubes up to +2.3%);
-the blend's exponentials taken over each ring at once with Eigen's vectorised exp (no faster:
-3.95–4.09 s against 3.83–3.99 s for the quadric step, best of three in three interleaved runs, the blend's cost is in reading the
+**An early stop for the robust quadric fits (the default since 2026-12-05).** Each quadric was
+four least-squares fits, each weighting the ring's points by their residual to the one before;
+now the remaining fits are skipped once a fit after the first moves the surface by at most a
+tenth of the noise level at every point of the ring (the next weights would differ by a few
+percent). On the calibration set kept apart (`calibrate_gamma --default-only --no-risk`, 96
+clouds) the geometric-mean error went from 0.000136603 to 0.000136481 (Tikhonov) and from
+0.000137974 to 0.000137878 (TV), every cloud within −1.2% to +0.6%. On a noisy
+1,000,000-point sphere (σ = 1%, two threads, a scratch driver of its own seed, old and new
+library interleaved) the quadric step went from 3.83–3.95 s to 3.16–3.21 s (best of three,
+three runs each), and the filters with their defaults (three runs each) from 8.2–9.5 s to
+7.5–8.9 s (Tikhonov) and from 15.6–15.9 s to 13.8–15.3 s (TV), their errors unchanged to three
+significant digits (0.000446 and 0.000893). The k-NN graph of those points took 0.68 s in the
+same session (`bench_graph 1000000`, median of 3): Tikhonov is still 11–13 × it and TV 20–22 ×
+(targets 2 × and 6 ×); the filters took longer in this session than in the paragraph above
+(7.3–7.8 s and 12.3–12.4 s there, another driver and seed, on another day). The change came
+after the last regeneration of the tables of sections 2, 3 and 6 (2026-12-04; sections 1 and 4
+fit no quadrics); by the calibration set it moves them by about 0.1%. Tried the same day and
+not taken: fewer fits always, three (−0.9% and −0.6% on the calibration set, but the noisy
+cubes' edges up to +2.0%), two (−1.9% and −0.6%, the cubes up to +8.9%: the extra fits are what
+keeps the other face out at a sharp edge), one (+3.6% and +7.4%); a looser stop at 0.3 noise
+levels (−0.7% and −0.5%, the cubes up to +2.3%); the blend's exponentials taken over each ring
+at once with Eigen's vectorised exp (no faster: 3.95–4.09 s against 3.83–3.99 s for the quadric
+step in separate interleaved runs; the blend's cost is in collecting the rings and reading the
 neighbours' patches); the fits' robust weights by the single-precision exp, relative to the
 largest (no faster within the machine's run-to-run spread). And, bit for bit the same output,
 the covariance of a vertex's rings summed once for its two-ring and its three-ring fit (the

@@ -137,10 +137,12 @@ public:
   explicit RingMoments (std::size_t origin) : origin_ (origin) {}
 
   /** The covariance of the points of `ring`, whose first points (as many as at the last
-   *  call) are the ones summed then. */
+   *  call) are the ones summed then; a ring shorter than that is summed afresh. */
   Eigen::Matrix3d
   covariance (const Signal3 &points, const std::vector<VertexIndex> &ring)
   {
+    if (ring.size () < count_)
+      *this = RingMoments (origin_);
     for (; count_ < ring.size (); ++count_)
     {
       const Eigen::Vector3d d = (points.row (ring[count_]) - points.row (origin_)).transpose ();
