@@ -7,11 +7,13 @@
  * likely to go wrong: the result must be exactly the k nearest by (single-precision
  * squared distance, vertex), whatever the number of threads. Compiled with
  * -ffp-contract=off, as the search is, so that both compute the same distances.
+ * Also the graph rings of the quadric fits and the noise estimate (src/core/two_ring.h).
  */
 #include <pcl_graph_denoise/core/graph.h>
 
 #include "neighbor_search.h"
 #include "spatial_order.h"
+#include "two_ring.h"
 
 #include <gtest/gtest.h>
 
@@ -217,5 +219,117 @@ TEST (AllNearestOthers, ExactOnEveryPath)
     const NearestOthersPaths paths = expectExact (cube, k, "a cube and five far points");
     EXPECT_EQ (paths.scanned, 5u) << "k = " << k;
     EXPECT_EQ (paths.tree, 0u) << "k = " << k;
+  }
+}
+
+// The graph rings of the quadric fits and the noise estimate (src/core/two_ring.h).
+
+namespace {
+
+/** A k-NN graph of a seeded random cloud, and its points as a signal. */
+PointGraph
+ringGraph (Signal3 &x)
+{
+  std::mt19937 rng (5);
+  std::normal_distribution<float> g (0.0f, 1.0f);
+  PointMatrix p (400, 3);
+  for (Eigen::Index r = 0; r < p.rows (); ++r)
+    p.row (r) << g (rng), g (rng), 0.1f * g (rng);
+  KnnGraphParams params;
+  params.k = 6;
+  PointGraph graph = buildKnnGraph (p, params);
+  x.resize (p.rows (), 3);
+  for (std::size_t v = 0; v < graph.numVertices (); ++v)
+    x.row (static_cast<Eigen::Index> (v)) = p.row (graph.order[v]).cast<double> ();
+  return graph;
+}
+
+/** The vertices within `hops` graph links of v, by breadth-first search. */
+std::vector<VertexIndex>
+within (const PointGraph &graph, VertexIndex v, int hops)
+{
+  std::vector<VertexIndex> out{v};
+  std::vector<int> depth (graph.numVertices (), -1);
+  depth[v] = 0;
+  for (std::size_t r = 0; r < out.size (); ++r)
+  {
+    const VertexIndex u = out[r];
+    if (depth[u] == hops)
+      continue;
+    for (std::uint64_t e = graph.row_ptr[u]; e < graph.row_ptr[u + 1]; ++e)
+      if (depth[graph.col[e]] < 0)
+      {
+        depth[graph.col[e]] = depth[u] + 1;
+        out.push_back (graph.col[e]);
+      }
+  }
+  return out;
+}
+
+/** The covariance of the ring's points, summed directly. */
+Eigen::Matrix3d
+directCovariance (const Signal3 &x, const std::vector<VertexIndex> &ring)
+{
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero ();
+  for (const VertexIndex j : ring)
+    mean += x.row (j).transpose ();
+  mean /= double (ring.size ());
+  Eigen::Matrix3d c = Eigen::Matrix3d::Zero ();
+  for (const VertexIndex j : ring)
+  {
+    const Eigen::Vector3d d = x.row (j).transpose () - mean;
+    c += d * d.transpose ();
+  }
+  return c / double (ring.size ());
+}
+
+} // namespace
+
+TEST (TwoRing, CollectsTheTwoRingsAndGrowsTheThirdEachVertexOnce)
+{
+  Signal3 x;
+  const PointGraph graph = ringGraph (x);
+  TwoRing two_ring;
+  std::vector<VertexIndex> ring;
+  for (VertexIndex v = 0; v < graph.numVertices (); v += 7)
+  {
+    two_ring.collect (graph, v, ring);
+    ASSERT_EQ (ring.front (), v);
+    std::vector<VertexIndex> got = ring, want = within (graph, v, 2);
+    std::sort (got.begin (), got.end ());
+    std::sort (want.begin (), want.end ());
+    EXPECT_EQ (got, want) << "vertex " << v;
+    const std::vector<VertexIndex> two = ring;
+    two_ring.grow (graph, ring);
+    // Grown by appending: the two rings stay in front, in their order.
+    ASSERT_GE (ring.size (), two.size ());
+    EXPECT_TRUE (std::equal (two.begin (), two.end (), ring.begin ())) << "vertex " << v;
+    got = ring;
+    want = within (graph, v, 3);
+    std::sort (got.begin (), got.end ());
+    std::sort (want.begin (), want.end ());
+    EXPECT_EQ (got, want) << "vertex " << v;
+  }
+}
+
+TEST (RingMoments, AGrownRingsCovarianceIsTheWholeRingsToTheBit)
+{
+  Signal3 x;
+  const PointGraph graph = ringGraph (x);
+  TwoRing two_ring;
+  std::vector<VertexIndex> ring;
+  for (VertexIndex v = 0; v < graph.numVertices (); v += 11)
+  {
+    two_ring.collect (graph, v, ring);
+    RingMoments moments (v);
+    const std::vector<VertexIndex> two = ring;
+    const Eigen::Matrix3d narrow = moments.covariance (x, ring);
+    EXPECT_TRUE (narrow.isApprox (directCovariance (x, ring), 1e-12)) << "vertex " << v;
+    two_ring.grow (graph, ring);
+    const Eigen::Matrix3d wide = moments.covariance (x, ring);
+    EXPECT_EQ (wide, ringCovariance (x, ring, v)) << "vertex " << v;  // to the bit
+    EXPECT_TRUE (wide.isApprox (directCovariance (x, ring), 1e-12)) << "vertex " << v;
+    // A shorter ring afterwards is summed afresh, not taken from the longer one's sums.
+    EXPECT_EQ (moments.covariance (x, two), ringCovariance (x, two, v)) << "vertex " << v;
   }
 }
