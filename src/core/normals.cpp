@@ -274,9 +274,9 @@ wellConditioned (const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> &ldlt)
 
 /** Fits vertex i's patch to the points of x over `ring` (its two rings, or three),
  *  robustly with a noise level > 0 (quadricDisplacement). `moments`: vertex i's, holding
- *  the sums of the ring's first points when an earlier fit used them. `samples` receives the ring's
- *  points in the patch's frame, in the ring's order (count 0 when the patch has no
- *  extent or too few points for a quadric). `fitted`, when given: whether a quadric was
+ *  the sums of the ring's first points when an earlier fit used them. `samples` receives
+ *  the ring's points in the patch's frame, in the ring's order (count 0 when the patch
+ *  has no extent or too few points for a quadric). `fitted`, when given: whether a quadric was
  *  fitted (else the patch is the plane, or invalid). */
 Patch
 fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i, double noise,
