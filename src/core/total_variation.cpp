@@ -29,24 +29,46 @@ namespace core {
 
 namespace {
 
-/** Projects a dual 3-vector onto the norm's dual ball of radius gamma (odd in y). */
+/** The duals, one array per coordinate (column-major), so that the update of a row's
+ *  entries runs over consecutive floats. */
+using Duals = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::ColMajor>;
+
+/** A row's entries are updated a batch at a time: their differences gathered first,
+ *  then the dual step and the projection over the batch as over plain arrays (vectorised:
+ *  the file is compiled without errno and trap semantics for it), then the row's adjoint
+ *  summed in entry order. */
+constexpr std::size_t kDualBatch = 32;
+
+/** Dual ascent and projection of `count` consecutive entries, y <- proj(y + step d) onto
+ *  the dual ball of radius gamma of the norm (odd in y and d, so antisymmetry holds
+ *  exactly). The isotropic shrink factor is computed for every entry and applied where
+ *  the ball is left, without a branch; an entry inside keeps its value (times 1). */
 inline void
-project (float y[3], float gamma, TotalVariationNorm norm)
+dualStep (float *y0, float *y1, float *y2, const float (&d)[3][kDualBatch], std::size_t count,
+          float step, float gamma, TotalVariationNorm norm)
 {
   if (norm == TotalVariationNorm::ISOTROPIC)
   {
-    const float squared = y[0] * y[0] + y[1] * y[1] + y[2] * y[2];
-    if (squared > gamma * gamma)
+    const float gamma2 = gamma * gamma;
+    for (std::size_t t = 0; t < count; ++t)
     {
-      const float scale = gamma / std::sqrt (squared);
-      for (int c = 0; c < 3; ++c)
-        y[c] *= scale;
+      const float v0 = y0[t] + step * d[0][t];
+      const float v1 = y1[t] + step * d[1][t];
+      const float v2 = y2[t] + step * d[2][t];
+      const float squared = v0 * v0 + v1 * v1 + v2 * v2;
+      const float shrink = gamma / std::sqrt (squared);
+      const float scale = squared > gamma2 ? shrink : 1.0f;
+      y0[t] = v0 * scale;
+      y1[t] = v1 * scale;
+      y2[t] = v2 * scale;
     }
   }
   else
   {
+    float *y[3] = {y0, y1, y2};
     for (int c = 0; c < 3; ++c)
-      y[c] = std::max (-gamma, std::min (gamma, y[c]));
+      for (std::size_t t = 0; t < count; ++t)
+        y[c][t] = std::max (-gamma, std::min (gamma, y[c][t] + step * d[c][t]));
   }
 }
 
@@ -145,8 +167,7 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
   // duals there for the differences of f (feasible, and odd in (i, j) as required)
   // and the primal at f - grad^T y cuts the iterations several times.
   Signal3 x (n, 3), xbar (n, 3), gty (n, 3);
-  Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor> y (
-      static_cast<Eigen::Index> (graph.numEntries ()), 3);
+  Duals y (static_cast<Eigen::Index> (graph.numEntries ()), 3);
   detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {
@@ -185,21 +206,26 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
     // numbers of similar size); sums over a row are accumulated in double.
     const float step = static_cast<float> (0.5 / scale);
     detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
+      float d[3][kDualBatch];
       for (std::size_t i = begin; i < end; ++i)
       {
         double acc[3] = {0.0, 0.0, 0.0};
-        for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+        for (std::uint64_t first = graph.row_ptr[i]; first < graph.row_ptr[i + 1];
+             first += kDualBatch)
         {
-          const VertexIndex j = graph.col[e];
-          float v[3];
-          for (int c = 0; c < 3; ++c)
-            v[c] = y (e, c) + step * static_cast<float> (xbar (i, c) - xbar (j, c));
-          project (v, bound_gamma, params.norm);
-          for (int c = 0; c < 3; ++c)
+          const std::size_t count = static_cast<std::size_t> (
+              std::min<std::uint64_t> (kDualBatch, graph.row_ptr[i + 1] - first));
+          for (std::size_t t = 0; t < count; ++t)
           {
-            y (e, c) = v[c];
-            acc[c] += double (root_weight[e]) * double (v[c]);
+            const VertexIndex j = graph.col[first + t];
+            for (int c = 0; c < 3; ++c)
+              d[c][t] = static_cast<float> (xbar (i, c) - xbar (j, c));
           }
+          const auto e = static_cast<Eigen::Index> (first);
+          dualStep (&y (e, 0), &y (e, 1), &y (e, 2), d, count, step, bound_gamma, params.norm);
+          for (std::size_t t = 0; t < count; ++t)
+            for (int c = 0; c < 3; ++c)
+              acc[c] += double (root_weight[first + t]) * double (y (e + t, c));
         }
         for (int c = 0; c < 3; ++c)
           gty (i, c) = acc[c];
