@@ -72,7 +72,9 @@ dualStep (float *y0, float *y1, float *y2, const float (&d)[3][kDualBatch], std:
   }
 }
 
-/** TV(x) = 1/2 sum over stored entries of the norm of sqrt(w) (x_i - x_j). */
+/** TV(x) = 1/2 sum over stored entries of the norm of sqrt(w) (x_i - x_j). A block's
+ *  entries are taken a batch at a time, their differences gathered first and their norms
+ *  computed over the batch (vectorised), then summed in entry order. */
 double
 totalVariation (const PointGraph &graph, const Signal3 &x, TotalVariationNorm norm,
                 int num_threads)
@@ -80,18 +82,40 @@ totalVariation (const PointGraph &graph, const Signal3 &x, TotalVariationNorm no
   return 0.5 * detail::parallelSum<double> (
                    graph.numVertices (), num_threads, [&] (std::size_t begin, std::size_t end) {
                      double sum = 0.0;
-                     for (std::size_t i = begin; i < end; ++i)
-                       for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+                     double d[3][kDualBatch], length[kDualBatch];
+                     std::size_t i = begin;
+                     const std::uint64_t last = graph.row_ptr[end];
+                     for (std::uint64_t first = graph.row_ptr[begin]; first < last;
+                          first += kDualBatch)
+                     {
+                       const std::size_t count = static_cast<std::size_t> (
+                           std::min<std::uint64_t> (kDualBatch, last - first));
+                       for (std::size_t t = 0; t < count; ++t)
                        {
-                         const double s = std::sqrt (double (graph.weight[e]));
-                         const VertexIndex j = graph.col[e];
-                         double d[3];
+                         while (first + t >= graph.row_ptr[i + 1])
+                           ++i;
+                         const VertexIndex j = graph.col[first + t];
                          for (int c = 0; c < 3; ++c)
-                           d[c] = s * (x (i, c) - x (j, c));
-                         sum += norm == TotalVariationNorm::ISOTROPIC
-                                    ? std::sqrt (d[0] * d[0] + d[1] * d[1] + d[2] * d[2])
-                                    : std::abs (d[0]) + std::abs (d[1]) + std::abs (d[2]);
+                           d[c][t] = x (i, c) - x (j, c);
                        }
+                       const float *weight = graph.weight.data () + first;
+                       if (norm == TotalVariationNorm::ISOTROPIC)
+                         for (std::size_t t = 0; t < count; ++t)
+                         {
+                           const double s = std::sqrt (double (weight[t]));
+                           const double d0 = s * d[0][t], d1 = s * d[1][t], d2 = s * d[2][t];
+                           length[t] = std::sqrt (d0 * d0 + d1 * d1 + d2 * d2);
+                         }
+                       else
+                         for (std::size_t t = 0; t < count; ++t)
+                         {
+                           const double s = std::sqrt (double (weight[t]));
+                           length[t] = std::abs (s * d[0][t]) + std::abs (s * d[1][t]) +
+                                       std::abs (s * d[2][t]);
+                         }
+                       for (std::size_t t = 0; t < count; ++t)
+                         sum += length[t];
+                     }
                      return sum;
                    });
 }
