@@ -314,6 +314,91 @@ TEST (TwoRing, CollectsTheTwoRingsAndGrowsTheThirdEachVertexOnce)
   }
 }
 
+/** A k-NN graph of `n` seeded random points on a noisy sheet. */
+PointGraph
+sheetGraph (std::size_t n, int k)
+{
+  std::mt19937 rng (11);
+  std::uniform_real_distribution<float> u (-1.0f, 1.0f);
+  std::normal_distribution<float> g (0.0f, 0.01f);
+  PointMatrix p (static_cast<Eigen::Index> (n), 3);
+  for (Eigen::Index r = 0; r < p.rows (); ++r)
+    p.row (r) << u (rng), u (rng), g (rng);
+  KnnGraphParams params;
+  params.k = k;
+  return buildKnnGraph (p, params);
+}
+
+/** The stored entries TwoRing::collect scans for v's two rings (its bound). */
+std::uint64_t
+twoRingScan (const PointGraph &graph, VertexIndex v)
+{
+  std::uint64_t bound = 1;
+  for (std::uint64_t e = graph.row_ptr[v]; e < graph.row_ptr[v + 1]; ++e)
+    bound += 1 + (graph.row_ptr[graph.col[e] + 1] - graph.row_ptr[graph.col[e]]);
+  return bound;
+}
+
+TEST (TwoRing, KNearestGraphsUpToSixtyNeighboursKeepTheirFullRings)
+{
+  const PointGraph graph = sheetGraph (3000, 60);
+  TwoRing two_ring;
+  std::vector<VertexIndex> ring;
+  for (VertexIndex v = 0; v < graph.numVertices (); v += 97)
+  {
+    two_ring.collect (graph, v, ring);
+    EXPECT_TRUE (sameVertices (ring, within (graph, v, 2))) << "vertex " << v;
+    EXPECT_TRUE (two_ring.grow (graph, ring)) << "vertex " << v;
+    EXPECT_TRUE (sameVertices (ring, within (graph, v, 3))) << "vertex " << v;
+  }
+}
+
+TEST (TwoRing, ADenseGraphsRingIsTheOneRingAndDoesNotGrow)
+{
+  // k = 300 of 1,500 points: a row is below TwoRing::kMaxOneRing, but its two rings
+  // would scan more than kScanLimit entries, so the ring is the vertex and its neighbours.
+  const PointGraph graph = sheetGraph (1500, 300);
+  TwoRing two_ring;
+  std::vector<VertexIndex> ring;
+  for (VertexIndex v = 0; v < graph.numVertices (); v += 101)
+  {
+    ASSERT_LE (graph.row_ptr[v + 1] - graph.row_ptr[v], TwoRing::kMaxOneRing);
+    ASSERT_GT (twoRingScan (graph, v), TwoRing::kScanLimit);
+    two_ring.collect (graph, v, ring);
+    ASSERT_EQ (ring.front (), v);
+    EXPECT_TRUE (sameVertices (ring, within (graph, v, 1))) << "vertex " << v;
+    const std::vector<VertexIndex> one = ring;
+    EXPECT_FALSE (two_ring.grow (graph, ring));
+    EXPECT_EQ (ring, one);
+  }
+}
+
+TEST (TwoRing, AVertexWithMoreNeighboursThanTheLimitKeepsTheNearest)
+{
+  // k >= N: every point linked to all others (1,299 neighbours each).
+  const PointGraph graph = sheetGraph (1300, 5000);
+  TwoRing two_ring;
+  std::vector<VertexIndex> ring;
+  for (VertexIndex v = 0; v < graph.numVertices (); v += 89)
+  {
+    ASSERT_EQ (graph.row_ptr[v + 1] - graph.row_ptr[v], graph.numVertices () - 1);
+    // The kMaxOneRing largest weights of the row, ties by vertex number.
+    std::vector<std::pair<float, VertexIndex>> row;
+    for (std::uint64_t e = graph.row_ptr[v]; e < graph.row_ptr[v + 1]; ++e)
+      row.emplace_back (-graph.weight[e], graph.col[e]);
+    std::sort (row.begin (), row.end ());
+    std::vector<VertexIndex> want{v};
+    for (std::size_t r = 0; r < TwoRing::kMaxOneRing; ++r)
+      want.push_back (row[r].second);
+    two_ring.collect (graph, v, ring);
+    ASSERT_EQ (ring.front (), v);
+    EXPECT_EQ (ring.size (), TwoRing::kMaxOneRing + 1);
+    EXPECT_TRUE (sameVertices (ring, want)) << "vertex " << v;
+    EXPECT_FALSE (two_ring.grow (graph, ring));
+    EXPECT_EQ (ring.size (), TwoRing::kMaxOneRing + 1);
+  }
+}
+
 TEST (RingMoments, AGrownRingsCovarianceIsTheWholeRingsToTheBit)
 {
   Signal3 x;

@@ -423,8 +423,10 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
         narrow_move.resize (narrow_size);
         for (std::size_t r = 0; r < narrow_size; ++r)
           narrow_move[r] = quadricHeight (patch.q, samples.a[r], samples.b[r]) - samples.h[r];
-        two_ring.grow (graph, ring);
-        const Patch wide = fitPatch (x, ring, i, noise, moments, samples);
+        // (No wider fit where the next ring is too large to collect: a dense graph.)
+        const Patch wide = two_ring.grow (graph, ring)
+                               ? fitPatch (x, ring, i, noise, moments, samples)
+                               : Patch ();
         if (wide.valid () && samples.count == ring.size ())
         {
           double sum = 0.0;

@@ -23,55 +23,78 @@ namespace detail {
 
 /** Collects a vertex's two rings (the vertex, its neighbours and theirs, each once, in
  *  the order first met), and on demand the next ring, with a small open-addressing set
- *  that is reused from vertex to vertex: no sort, no clearing. One per thread. */
+ *  that is reused from vertex to vertex: no sort, no clearing. One per thread.
+ *
+ *  On dense graphs (a large k, or k >= N: every point linked to all others) a ring's cost
+ *  grows with the square of the degree, so that the patches of a cloud took time cubic in
+ *  its size. Two limits keep it linear in the degree: a next ring that would mean scanning
+ *  more than kScanLimit stored entries is not added (the ring stays as it is), and a vertex
+ *  with more than kMaxOneRing neighbours keeps its kMaxOneRing nearest (largest weights,
+ *  ties by vertex number) as its ring. Neither is reached by k-NN graphs up to k = 60. */
 class TwoRing
 {
 public:
+  /** The most stored entries scanned to add a ring. */
+  static constexpr std::uint64_t kScanLimit = 65536;
+  /** The most neighbours a ring takes from a vertex's own row. */
+  static constexpr std::size_t kMaxOneRing = 1024;
+
   void
   collect (const PointGraph &graph, std::size_t i, std::vector<VertexIndex> &ring)
   {
+    const std::uint64_t first = graph.row_ptr[i], last = graph.row_ptr[i + 1];
+    if (last - first > kMaxOneRing)
+    {
+      nearest_.resize (last - first);
+      for (std::uint64_t e = first; e < last; ++e)
+        nearest_[e - first] = e;
+      const auto closer = [&] (std::uint64_t a, std::uint64_t b) {
+        return graph.weight[a] != graph.weight[b] ? graph.weight[a] > graph.weight[b]
+                                                  : graph.col[a] < graph.col[b];
+      };
+      std::nth_element (nearest_.begin (), nearest_.begin () + kMaxOneRing, nearest_.end (),
+                        closer);
+      nearest_.resize (kMaxOneRing);
+      std::sort (nearest_.begin (), nearest_.end ());  // in the row's order
+      reset (kMaxOneRing + 1);
+      ring.clear ();
+      insert (static_cast<VertexIndex> (i), ring);
+      for (const std::uint64_t e : nearest_)
+        insert (graph.col[e], ring);
+      return;
+    }
     std::uint64_t bound = 1;
-    for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+    for (std::uint64_t e = first; e < last; ++e)
     {
       const VertexIndex j = graph.col[e];
       bound += 1 + (graph.row_ptr[j + 1] - graph.row_ptr[j]);
     }
-    // The table only ever grows: a vertex's three rings need a larger one than the next
-    // vertex's two, and reallocating it at every vertex cost more than the lookups.
-    int bits = std::max (bits_, 4);
-    while ((std::uint64_t (1) << bits) < 2 * bound)
-      ++bits;
-    if (bits != bits_)
-    {
-      bits_ = bits;
-      slot_.assign (std::size_t (1) << bits, 0);
-      stamp_.assign (std::size_t (1) << bits, 0);
-      epoch_ = 0;
-    }
-    if (++epoch_ == 0)  // wrapped: forget every stamp
-    {
-      std::fill (stamp_.begin (), stamp_.end (), 0);
-      epoch_ = 1;
-    }
+    const bool second = bound <= kScanLimit;
+    reset (second ? bound : 1 + (last - first));
     ring.clear ();
     insert (static_cast<VertexIndex> (i), ring);
-    for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+    for (std::uint64_t e = first; e < last; ++e)
     {
       const VertexIndex j = graph.col[e];
       insert (j, ring);
-      for (std::uint64_t f = graph.row_ptr[j]; f < graph.row_ptr[j + 1]; ++f)
-        insert (graph.col[f], ring);
+      if (second)
+        for (std::uint64_t f = graph.row_ptr[j]; f < graph.row_ptr[j + 1]; ++f)
+          insert (graph.col[f], ring);
     }
   }
 
   /** Adds the next ring to `ring` as collect left it: the neighbours of every vertex in
-   *  it that are not in it yet, in the order first met (after collect, the three rings). */
-  void
+   *  it that are not in it yet, in the order first met (after collect, the three rings).
+   *  Returns false, and leaves the ring as it is, when that would scan more than
+   *  kScanLimit stored entries. */
+  bool
   grow (const PointGraph &graph, std::vector<VertexIndex> &ring)
   {
     std::uint64_t bound = 0;
     for (const VertexIndex j : ring)
       bound += 1 + (graph.row_ptr[j + 1] - graph.row_ptr[j]);
+    if (bound > kScanLimit)
+      return false;
     int bits = bits_;
     while ((std::uint64_t (1) << bits) < 2 * bound)
       ++bits;
@@ -92,9 +115,33 @@ public:
       for (std::uint64_t e = graph.row_ptr[j]; e < graph.row_ptr[j + 1]; ++e)
         insert (graph.col[e], ring);
     }
+    return true;
   }
 
 private:
+  /** A fresh (empty) set with room for `bound` vertices. The table only ever grows: a
+   *  vertex's three rings need a larger one than the next vertex's two, and reallocating
+   *  it at every vertex cost more than the lookups. */
+  void
+  reset (std::uint64_t bound)
+  {
+    int bits = std::max (bits_, 4);
+    while ((std::uint64_t (1) << bits) < 2 * bound)
+      ++bits;
+    if (bits != bits_)
+    {
+      bits_ = bits;
+      slot_.assign (std::size_t (1) << bits, 0);
+      stamp_.assign (std::size_t (1) << bits, 0);
+      epoch_ = 0;
+    }
+    if (++epoch_ == 0)  // wrapped: forget every stamp
+    {
+      std::fill (stamp_.begin (), stamp_.end (), 0);
+      epoch_ = 1;
+    }
+  }
+
   /** Puts v in the set; true when it was not there. */
   bool
   mark (VertexIndex v)
@@ -125,6 +172,7 @@ private:
   std::uint32_t epoch_ = 0;
   std::vector<VertexIndex> slot_;
   std::vector<std::uint32_t> stamp_;
+  std::vector<std::uint64_t> nearest_;  ///< a dense row's entries, nearest first
 };
 
 /** The covariance of a ring's points (taken relative to the point `origin`, so that large
