@@ -511,6 +511,22 @@ TEST (BadInput, KTooLargeForTheMemoryGivesAnErrorBeforeAllocating)
   }
 }
 
+TEST (BadInput, AMemoryLimitErrorNamesOnlyWhatTheFilterCanLower)
+{
+  // The outlier filter has no k: its way out is fewer points or a higher limit; the
+  // smoothers' is fewer points, a lower k or a higher limit.
+  auto cloud = std::make_shared<Cloud> (synthetic::noisyPlane (2000, 0.01, 5));
+  const Outcome outliers = run (Kind::OUTLIERS, cloud, [] (Outliers &f) { f.setMemoryLimit (1); });
+  expectError (outliers, "raise the limit (setMemoryLimit)");
+  EXPECT_EQ (outliers.err.find ("lower k"), std::string::npos) << outliers.what ();
+  for (const Kind kind : kSmoothers)
+  {
+    const Outcome o =
+        run (kind, cloud, nullptr, [] (Smoothing &f) { f.setMemoryLimit (1); });
+    expectError (o, "lower k, or raise the limit (setMemoryLimit)");
+  }
+}
+
 // ---- Parameters: zero, non-finite, huge -------------------------------------------------
 
 TEST (BadInput, ZeroParametersAreTheirDocumentedMeaning)

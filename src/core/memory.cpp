@@ -94,18 +94,21 @@ radiusDegreesMemory (std::size_t n)
 }
 
 void
-requireMemory (std::size_t needed, std::size_t limit, const std::string &what)
+requireMemory (std::size_t needed, std::size_t limit, const std::string &what,
+               const std::string &lever)
 {
   const std::size_t machine = limit == 0 ? physicalMemory () : 0;
   const std::size_t allowed = limit == 0 ? machine : limit;
   if (allowed == 0 || needed <= allowed)
     return;
-  char text[320];
+  const std::string way_out = lever.empty () ? std::string (" or") : ", lower " + lever + ", or";
+  char text[400];
   std::snprintf (text, sizeof (text),
                  "%s would need about %.3g GB, more than the %.3g GB %s: filter fewer points "
-                 "(e.g. pcl::VoxelGrid first), lower k, or raise the limit (setMemoryLimit)",
+                 "(e.g. pcl::VoxelGrid first)%s raise the limit (setMemoryLimit)",
                  what.c_str (), double (needed) / 1e9, double (allowed) / 1e9,
-                 limit == 0 ? "of memory of this machine" : "allowed by the memory limit");
+                 limit == 0 ? "of memory of this machine" : "allowed by the memory limit",
+                 way_out.c_str ());
   throw std::invalid_argument (text);
 }
 

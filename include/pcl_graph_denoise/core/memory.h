@@ -47,9 +47,12 @@ radiusDegreesMemory (std::size_t n);
 
 /** \brief Throws std::invalid_argument, naming `what`, both figures and the way out,
  *  when `needed` bytes exceed `limit`; a limit of 0 stands for physicalMemory () (and
- *  nothing is checked when that is unknown too). */
+ *  nothing is checked when that is unknown too). The way out names fewer points, the
+ *  limit and `lever`, the caller's parameter that the memory grows with (default "k";
+ *  empty when there is none). */
 void
-requireMemory (std::size_t needed, std::size_t limit, const std::string &what);
+requireMemory (std::size_t needed, std::size_t limit, const std::string &what,
+               const std::string &lever = "k");
 
 } // namespace core
 } // namespace pcl_graph_denoise

@@ -92,7 +92,8 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
   try
   {
     core::requireMemory (estimateMemory (input_->size ()), memory_limit_,
-                         "removing the outliers of " + std::to_string (input_->size ()) + " points");
+                         "removing the outliers of " + std::to_string (input_->size ()) + " points",
+                         "");  // its memory grows with the points alone
   }
   catch (const std::exception &e)
   {

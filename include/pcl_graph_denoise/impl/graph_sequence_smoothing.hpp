@@ -265,7 +265,8 @@ GraphSequenceSmoothing<PointT>::denoiseFrame (const std::vector<PointCloudConstP
                                    std::size_t (k_temporal_) * (window_frames.size () - 1);
     core::requireMemory (smoother.estimateMemoryFor (total, neighbours), smoother.memory_limit_,
                          "smoothing a window of " + std::to_string (window_frames.size ()) +
-                             " frames (" + std::to_string (total) + " points)");
+                             " frames (" + std::to_string (total) + " points)",
+                         "k, the temporal k or the window");
     position = smoother.runPasses (start, [&] (const core::PointMatrix &points) {
       std::vector<core::PointMatrix> frames;
       Eigen::Index first = 0;
