@@ -333,6 +333,34 @@ TEST (TotalVariationSolver, ZeroGammaIsTheIdentityAndThreadsDoNotMatter)
                solveTotalVariation (p.graph, p.f, 0.01, two));
 }
 
+TEST (TotalVariationSolver, AHugeGammaStaysWithinTheInputsBoundingBox)
+{
+  // The minimiser lies within f's bounding box and tends to its mean as gamma grows. The
+  // warm start lies about gamma times the degree away from f: at such a gamma the solver
+  // starts cold instead, and at its iteration cap it never returns an iterate worse than
+  // its start.
+  const Problem p (500);
+  const Eigen::RowVector3d low = p.f.colwise ().minCoeff (), high = p.f.colwise ().maxCoeff ();
+  for (const double gamma : {1e3, 1e5, 1e10})
+    for (const int cap : {3, 500})
+    {
+      TotalVariationParams params;
+      params.max_iterations = cap;
+      const Signal3 x = solveTotalVariation (p.graph, p.f, gamma, params);
+      ASSERT_TRUE (x.allFinite ());
+      for (Eigen::Index i = 0; i < x.rows (); ++i)
+        for (int c = 0; c < 3; ++c)
+        {
+          ASSERT_GE (x (i, c), low (c) - 1e-9) << "gamma " << gamma << ", cap " << cap;
+          ASSERT_LE (x (i, c), high (c) + 1e-9) << "gamma " << gamma << ", cap " << cap;
+        }
+      const TotalVariationNorm iso = TotalVariationNorm::ISOTROPIC;
+      EXPECT_LE (totalVariationObjective (p.graph, p.f, x, gamma, iso),
+                 gamma * totalVariationObjective (p.graph, p.f, p.f, 1.0, iso) * (1.0 + 1e-12))
+          << "worse than f itself: gamma " << gamma << ", cap " << cap;
+    }
+}
+
 TEST (TotalVariationSolver, IterationCapIsReported)
 {
   const Problem p (3000);

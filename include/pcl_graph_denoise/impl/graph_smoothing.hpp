@@ -241,7 +241,8 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
         // sums the iterations of the pass and keeps the worst residual.
         if (!report.converged)
           PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] The solver stopped after %d iterations "
-                    "at a residual of %g, above its tolerance; its last iterate is used.\n",
+                    "at a residual of %g, above its tolerance; its last iterate (TV: or its "
+                    "start, where that was better) is used.\n",
                     name.c_str (), report.iterations, report.residual);
         report_.iterations += report.iterations;
         report_.residual = std::max (report_.residual, report.residual);
