@@ -682,13 +682,15 @@ TEST (BadInput, HugeSmoothingParametersGiveDefinedResultsOrAnError)
   expectError (run (Kind::TV, cloud, nullptr, huge), "too large for the total-variation solver");
 }
 
-TEST (BadInput, HugeGammaWithCholmodGivesFiniteOutputNotNaN)
+TEST (BadInput, HugeGammaWithCholmodGivesAnErrorOrFiniteOutputNotNaN)
 {
   // Regression: I + 2 gamma L numerically singular, or the points collapsed below double
   // precision: NaN coordinates came out; then, at 1e100, the quadric fitted to the
-  // collapsed points sent them beyond float range (an error "overflowed"). Now the
-  // quadric is evaluated on its patch only: a finite cloud, each point within its
-  // distance to the collapsed estimate (about the sphere's radius) plus 3 noise levels.
+  // collapsed points sent them beyond float range (an error "overflowed"). Now a
+  // factorisation whose result lies outside the input's bounding box by more than the box's
+  // size (the exact solution lies inside it) is an error that names gamma; a result kept is
+  // finite, each point within its distance to the collapsed estimate (about the sphere's
+  // radius) plus 3 noise levels.
   auto cloud = sphere (300);
   for (const double gamma : {1e100, 1e300})
   {
@@ -702,6 +704,13 @@ TEST (BadInput, HugeGammaWithCholmodGivesFiniteOutputNotNaN)
     filter.filter (out);
     const std::string err = ::testing::internal::GetCapturedStderr ();
     EXPECT_TRUE (sameCloud (*cloud, before));
+    if (out.empty ())
+    {
+      EXPECT_NE (err.find ("is too large for the precision"), std::string::npos) << err;
+      EXPECT_NE (err.find ("GraphTikhonovSmoothing"), std::string::npos) << err;
+      EXPECT_FALSE (filter.getSolverReport ().converged) << gamma;
+      continue;
+    }
     ASSERT_EQ (out.size (), cloud->size ()) << gamma << ": " << err;
     for (std::size_t i = 0; i < out.size (); ++i)
     {
@@ -710,6 +719,45 @@ TEST (BadInput, HugeGammaWithCholmodGivesFiniteOutputNotNaN)
           << gamma << ", point " << i;
     }
   }
+}
+
+TEST (BadInput, AGammaTooLargeForConjugateGradientsIsAnErrorNotAFarCloud)
+{
+  // Regression (found by a helper's audit): at gamma 1e30 the conjugate gradients lost
+  // their precision and the filter returned the points up to 1e11 away from a unit
+  // sphere, with only a warning. The solution of (I + 2 gamma L) x = f lies in f's
+  // bounding box: an iterate far outside it is an error naming gamma, and the filter
+  // returns an empty cloud (as for every failed call) and reports no solve.
+  auto cloud = sphere (3000);
+  for (const double gamma : {1e20, 1e30})
+    for (const bool paper : {false, true})
+    {
+      GraphTikhonovSmoothing<pcl::PointXYZ> filter;
+      filter.setGamma (gamma);
+      if (paper)
+      {
+        filter.setNormalDisplacement (false);
+        filter.setShrinkageCorrection (false);
+      }
+      filter.setInputCloud (cloud);
+      const Cloud before = deepCopy (*cloud);
+      Cloud out;
+      ::testing::internal::CaptureStderr ();
+      filter.filter (out);
+      const std::string err = ::testing::internal::GetCapturedStderr ();
+      EXPECT_TRUE (sameCloud (*cloud, before));
+      if (!out.empty ())
+      {
+        // A result kept must be a sane one: inside the sphere's box, grown by its size.
+        for (const auto &q : out)
+          ASSERT_LT (q.getVector3fMap ().cwiseAbs ().maxCoeff (), 3.5f)
+              << "gamma " << gamma << (paper ? " (paper)" : "") << ": " << err;
+        continue;
+      }
+      EXPECT_NE (err.find ("is too large for the precision"), std::string::npos) << err;
+      EXPECT_FALSE (filter.getSolverReport ().converged);
+      EXPECT_EQ (filter.getSolverReport ().iterations, 0);
+    }
 }
 
 TEST (BadInput, TinyGammaConvergesAtOnceInsteadOfRunningToTheCap)

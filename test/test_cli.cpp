@@ -960,6 +960,9 @@ TEST (Cli, BadInputFailsWithOneLineAndNoOutput)
       {"good.pcd", "out.pcd", "-tv", "-gamma", "nan"},
       {"good.pcd", "out.pcd", "-tv", "-gamma", "inf"},
       {"good.pcd", "out.pcd", "-tv", "-gamma", "1e999"},
+      {"good.pcd", "out.pcd", "-tv", "-gamma", "0x10"},  // strtod would read 16
+      {"good.pcd", "out.pcd", "-tv", "gamma=0x1p-4"},
+      {"good.pcd", "out.pcd", "-outliers", "-radius", "infinity"},
       {"good.pcd", "out.pcd", "-tv", "-sigma", "-0.5"},
       {"good.pcd", "out.pcd", "-tv", "-k", "0"},
       {"good.pcd", "out.pcd", "-tv", "-k", "2.5"},

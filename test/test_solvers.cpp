@@ -235,6 +235,36 @@ TEST (Tikhonov, MostlyCoincidentRowsStillConverge)
   EXPECT_TRUE (x.allFinite ());
 }
 
+TEST (Tikhonov, NeverReturnsAResultFarOutsideTheInputsBoundingBox)
+{
+  // (I + 2 gamma L)^-1 has no negative entry and rows summing to 1: the solution lies in
+  // f's bounding box. Where gamma is too large for double precision (from about 1e20 here)
+  // conjugate gradients wandered to 1e11 on this unit sphere; the solver now throws
+  // instead of returning such an iterate.
+  const Problem p (1500);
+  const Eigen::RowVector3d low = p.f.colwise ().minCoeff (), high = p.f.colwise ().maxCoeff ();
+  const double side = (high - low).maxCoeff ();
+  for (const double gamma : {1e3, 1e12, 1e20, 1e30, 1e300})
+  {
+    TikhonovParams params;
+    params.max_iterations = 2000;
+    Signal3 x;
+    try
+    {
+      x = solveTikhonov (p.graph, p.f, gamma, params);
+    }
+    catch (const std::runtime_error &e)
+    {
+      EXPECT_GE (gamma, 1e15) << "a moderate gamma must solve: " << e.what ();
+      EXPECT_NE (std::string (e.what ()).find ("gamma"), std::string::npos) << e.what ();
+      continue;
+    }
+    ASSERT_TRUE (x.allFinite ()) << "gamma " << gamma;
+    EXPECT_LE ((low - x.colwise ().minCoeff ()).maxCoeff (), 1e-3 * side) << "gamma " << gamma;
+    EXPECT_LE ((x.colwise ().maxCoeff () - high).maxCoeff (), 1e-3 * side) << "gamma " << gamma;
+  }
+}
+
 TEST (Tikhonov, RejectsInvalidInput)
 {
   const Problem p (100);

@@ -145,11 +145,12 @@ stepsHaving (unsigned mask)
   return names;
 }
 
-/** A whole argument as a finite real number. */
+/** A whole argument as a finite real number in decimal notation (strtod alone would
+ *  also read hexadecimal: "0x10" as 16). */
 bool
 parseReal (const std::string &text, double &value)
 {
-  if (text.empty () || std::isspace (static_cast<unsigned char> (text[0])))
+  if (text.empty () || text.find_first_not_of ("0123456789+-.eE") != std::string::npos)
     return false;
   char *end = nullptr;
   errno = 0;

@@ -120,7 +120,10 @@ public:
   getSigma () const { return sigma_; }
 
   /** \brief Smoothing strength gamma (see the subclass for its unit). Setting it turns
-   *  off the data-derived default; 0 leaves the cloud unchanged. Valid: >= 0. */
+   *  off the data-derived default; 0 leaves the cloud unchanged. Valid: >= 0. A gamma
+   *  too large for double precision (for Tikhonov on a unit sphere, about 1e20), whose
+   *  solve would return points outside the cloud's bounding box, is an error (empty
+   *  output) rather than such a cloud. */
   inline void
   setGamma (double gamma)
   {

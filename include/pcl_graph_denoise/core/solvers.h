@@ -63,7 +63,10 @@ struct TikhonovParams
 };
 
 /** \brief Solves (I + 2 gamma L) x = f for the three columns of f.
- *  \throws std::invalid_argument on invalid parameters or sizes. */
+ *  \throws std::invalid_argument on invalid parameters or sizes.
+ *  \throws std::runtime_error when gamma is too large for double precision: the result
+ *  overflowed, or lies outside the bounding box of f by more than the box's size (the
+ *  exact solution lies inside it; on a unit sphere from gamma about 1e20). */
 Signal3
 solveTikhonov (const PointGraph &graph, const Signal3 &f, double gamma,
                const TikhonovParams &params = {}, SolverReport *report = nullptr);
@@ -99,7 +102,10 @@ struct TotalVariationParams
  *  warm-started with every edge's dual on the boundary of its ball along the edge's
  *  difference. The reported residual is the relative
  *  duality gap.
- *  \throws std::invalid_argument on invalid parameters or sizes. */
+ *  \throws std::invalid_argument on invalid parameters or sizes.
+ *  \throws std::runtime_error when gamma is too large for double precision: the result
+ *  overflowed, or lies outside the bounding box of f by more than the box's size (the
+ *  exact minimiser lies inside it). */
 Signal3
 solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
                      const TotalVariationParams &params = {}, SolverReport *report = nullptr);

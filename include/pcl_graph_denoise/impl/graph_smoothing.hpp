@@ -166,6 +166,7 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
   catch (const std::exception &e)
   {
     PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] %s.\n", name.c_str (), e.what ());
+    report_ = core::SolverReport{};  // no solve of this call finished
     return fail ();
   }
   core::Signal3 copies_start;  // with copies: every row's start (else `start` is)
