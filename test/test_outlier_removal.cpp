@@ -16,6 +16,7 @@
 
 #include <pcl/common/io.h>
 #include <pcl/filters/filter.h>
+#include <pcl/filters/radius_outlier_removal.h>
 
 #include <algorithm>
 #include <cstring>
@@ -228,6 +229,28 @@ TYPED_TEST (OutlierRemovalContract, InPlaceEqualsOutOfPlace)
   filter.setInputCloud (in_place);
   filter.filter (*in_place);
   EXPECT_TRUE (sameCloud (*in_place, out));
+}
+
+TYPED_TEST (OutlierRemovalContract, AnIndexListFilteredIntoItselfEqualsACopy)
+{
+  // setIndices (list); filter (*list): PCL's filters write the kept indices over the list
+  // they read; the list was cleared before it was read, and nothing came out (found by a
+  // helper's audit).
+  auto indices = std::make_shared<pcl::Indices> ();
+  for (int i = 0; i < static_cast<int> (this->cloud->size ()); i += 2)
+    indices->push_back (i);
+  GraphDegreeOutlierRemoval<TypeParam> filter (true);
+  filter.setInputCloud (this->cloud);
+  filter.setIndices (std::make_shared<pcl::Indices> (*indices));
+  pcl::Indices copy;
+  filter.filter (copy);
+  const pcl::Indices removed = *filter.getRemovedIndices ();
+  ASSERT_FALSE (copy.empty ());
+  ASSERT_FALSE (removed.empty ());
+  filter.setIndices (indices);
+  filter.filter (*indices);
+  EXPECT_EQ (*indices, copy);
+  EXPECT_EQ (*filter.getRemovedIndices (), removed);
 }
 
 TYPED_TEST (OutlierRemovalContract, NonFinitePointsAreRemovedAndIgnored)
@@ -663,8 +686,33 @@ TEST (OutlierRemovalBadInput, InvalidParametersAreNamed)
     pcl::PointCloud<pcl::PointXYZ> out;
     filter.filter (out);
     EXPECT_TRUE (out.empty ());
+    // The shape of PCL's own filters' error path (RadiusOutlierRemoval without a radius),
+    // with and without setKeepOrganized (which would otherwise return the whole input).
+    for (const bool organized : {false, true})
+    {
+      filter.setKeepOrganized (organized);
+      pcl::PointCloud<pcl::PointXYZ> failed;
+      failed.resize (7);
+      filter.filter (failed);
+      EXPECT_EQ (failed.size (), 0u) << c.parameter;
+      EXPECT_EQ (failed.width, 0u) << c.parameter;
+      EXPECT_EQ (failed.height, 1u) << c.parameter;
+      EXPECT_EQ (failed.is_dense, cloud->is_dense) << c.parameter;
+      EXPECT_EQ (failed.header.frame_id, cloud->header.frame_id) << c.parameter;
+    }
   }
   EXPECT_TRUE (sameCloud (*cloud, before));
+  // The reference: PCL's RadiusOutlierRemoval with no radius set.
+  pcl::RadiusOutlierRemoval<pcl::PointXYZ> reference;
+  reference.setInputCloud (cloud);
+  pcl::PointCloud<pcl::PointXYZ> expected;
+  ::testing::internal::CaptureStderr ();
+  reference.filter (expected);
+  ::testing::internal::GetCapturedStderr ();
+  EXPECT_EQ (expected.size (), 0u);
+  EXPECT_EQ (expected.width, 0u);
+  EXPECT_EQ (expected.height, 1u);
+  EXPECT_EQ (expected.is_dense, cloud->is_dense);
 }
 
 TEST (OutlierRemovalBadInput, IndicesOutOfRangeOrRepeated)

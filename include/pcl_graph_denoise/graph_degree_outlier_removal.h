@@ -48,6 +48,7 @@ protected:
   using pcl::FilterIndices<PointT>::filter_name_;
   using pcl::FilterIndices<PointT>::getClassName;
   using pcl::FilterIndices<PointT>::indices_;
+  using pcl::FilterIndices<PointT>::keep_organized_;
   using pcl::FilterIndices<PointT>::input_;
   using pcl::FilterIndices<PointT>::negative_;
   using pcl::FilterIndices<PointT>::removed_indices_;

@@ -33,11 +33,15 @@ template <typename PointT>
 void
 GraphDegreeOutlierRemoval<PointT>::applyFilter (PointCloud &output)
 {
+  // After an error the index list is empty, and PCL's own path gives what its filters
+  // give on an error (an empty cloud, width 0, height 1, the input's header and density);
+  // only with setKeepOrganized would it give the input with every point replaced.
   pcl::FilterIndices<PointT>::applyFilter (output);
-  if (failed_)
+  if (failed_ && keep_organized_)
   {
     output.clear ();
-    output.is_dense = true;
+    output.height = 1;
+    output.is_dense = input_->is_dense;
   }
 }
 
@@ -197,17 +201,20 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
     state[gathered.cloud_index[r]] = (inlier[r] != 0) != negative_ ? 1 : 2;
   for (const auto index : gathered.non_finite)
     state[index] = 2;
-  indices.clear ();
-  indices.reserve (count);
+  // Into a list of their own: `indices` may be the caller's index list itself
+  // (setIndices (list); filter (*list), which PCL's filters allow).
+  pcl::Indices kept;
+  kept.reserve (count);
   removed_indices_->clear ();
   for (const auto index : *indices_)
   {
     if (state[index] == 1)
-      indices.push_back (index);
+      kept.push_back (index);
     else if (state[index] == 2 && extract_removed_indices_)
       removed_indices_->push_back (index);
     state[index] = 3;
   }
+  indices.swap (kept);
 }
 
 } // namespace pcl_graph_denoise
