@@ -1065,7 +1065,7 @@ What the numbers say:
   tolerance, before section 5's looser default, 1.78 mm; over two rings 1.93 and 1.80 mm; with
   the blended quadrics before the detail term 1.64 and 1.59 mm), at 5.8× the time for Tikhonov.
   Leaving out of the graph the links whose weight underflows to 0 and the isolated far points
-  out of the spacing (robustness fixes, [reliability](reliability.md) fix 8) moved these
+  out of the spacing (robustness fixes, [reliability](reliability.md) fix 9) moved these
   temporal rows by at most 0.7% (TV's mean 3.107 → 3.129 mm, median 1.847 → 1.849 mm) and no
   other figure of this report.
   TV converges with the preconditioned solver of section 5 (with the detail term
