@@ -166,7 +166,10 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
   catch (const std::exception &e)
   {
     PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] %s.\n", name.c_str (), e.what ());
-    report_ = core::SolverReport{};  // no solve of this call finished
+    // A failed call reports nothing, also when it failed in a solve.
+    used_gamma_ = used_sigma_ = estimated_noise_ = 0.0;
+    report_ = core::SolverReport{};
+    components_ = core::GraphComponents{};
     return fail ();
   }
   core::Signal3 copies_start;  // with copies: every row's start (else `start` is)
