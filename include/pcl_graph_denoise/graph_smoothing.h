@@ -120,7 +120,11 @@ public:
   getSigma () const { return sigma_; }
 
   /** \brief Smoothing strength gamma (see the subclass for its unit). Setting it turns
-   *  off the data-derived default; 0 leaves the cloud unchanged. Valid: >= 0. A gamma
+   *  off the data-derived default; 0 leaves the cloud unchanged. gamma sets the graph
+   *  solve's strength; the local-surface step after it (setNormalDisplacement,
+   *  setLocalSurface) smooths on its own, so that a gamma near 0 still moves the points
+   *  onto the surfaces fitted to them (in the paper's filter, without that step, gamma ->
+   *  0 is the identity). Valid: >= 0. A gamma
    *  too large for double precision (for Tikhonov on a unit sphere, about 1e20), whose
    *  solve would return points outside the cloud's bounding box, is an error (empty
    *  output) rather than such a cloud. */

@@ -4,6 +4,7 @@
  */
 #include <pcl_graph_denoise/core/operators.h>
 
+#include "components.h"
 #include "parallel.h"
 
 #include <algorithm>
@@ -145,8 +146,10 @@ applyGradientAdjoint (const PointGraph &graph, const Signal3 &g, Signal3 &x, int
   });
 }
 
-GraphComponents
-connectedComponents (const PointGraph &graph)
+namespace detail {
+
+std::vector<VertexIndex>
+componentRoots (const PointGraph &graph, std::vector<std::uint8_t> *linked)
 {
   const std::size_t n = graph.numVertices ();
   std::vector<VertexIndex> parent (n);
@@ -156,25 +159,39 @@ connectedComponents (const PointGraph &graph)
       v = parent[v] = parent[parent[v]];  // path halving
     return v;
   };
-  std::vector<std::uint8_t> linked (n, 0);
+  if (linked)
+    linked->assign (n, 0);
   for (std::size_t i = 0; i < n; ++i)
     for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
     {
       if (!(graph.weight[e] > 0.0f))
         continue;
-      linked[i] = 1;
+      if (linked)
+        (*linked)[i] = 1;
       const VertexIndex a = root (static_cast<VertexIndex> (i)), b = root (graph.col[e]);
       if (a != b)
         parent[std::max (a, b)] = std::min (a, b);
     }
+  for (std::size_t i = 0; i < n; ++i)
+    parent[i] = root (static_cast<VertexIndex> (i));
+  return parent;
+}
+
+} // namespace detail
+
+GraphComponents
+connectedComponents (const PointGraph &graph)
+{
+  const std::size_t n = graph.numVertices ();
+  std::vector<std::uint8_t> linked;
+  const std::vector<VertexIndex> root = detail::componentRoots (graph, &linked);
   GraphComponents out;
   std::vector<std::size_t> size (n, 0);
   for (std::size_t i = 0; i < n; ++i)
   {
-    const VertexIndex r = root (static_cast<VertexIndex> (i));
-    out.count += r == i;
+    out.count += root[i] == i;
     out.isolated += linked[i] == 0;
-    out.largest = std::max (out.largest, ++size[r]);
+    out.largest = std::max (out.largest, ++size[root[i]]);
   }
   return out;
 }

@@ -8,6 +8,7 @@
 
 #include <pcl_graph_denoise/core/graph.h>
 
+#include "components.h"
 #include "parallel.h"
 
 #include <algorithm>
@@ -82,22 +83,50 @@ centredNorm (const Signal3 &x, int num_threads)
   }));
 }
 
-/** The scale of a solver's relative residual: the centred norm of f, but at most
- *  kRobustScaleCap times sqrt(n) times the median distance of the rows (a sample of
- *  about 20,000 of them, evenly spread) from their per-axis median. On a compact cloud the
- *  two agree within a factor of about 1.5 and the cap never applies; a few far points
- *  make the centred norm as large as their distance, and a test relative to it would stop
- *  before the rest of the cloud is solved (a point 10^6 units from a grid 0.3 across: no
- *  iteration at all). Where most rows coincide (a median distance of 0), the centred norm. */
+/** The scale of a solver's relative residual: the norm of f centred on the mean of each
+ *  connected component of the graph (the solvers act on each component on its own, and
+ *  keep its mean), but at most kRobustScaleCap times sqrt(n) times the median distance of
+ *  the rows (a sample of about 20,000 of them, evenly spread) from their per-axis median.
+ *  Centred on the whole cloud's mean instead, two clusters far apart made the scale as
+ *  large as their distance, and the test stopped before either was solved (two spheres
+ *  10^5 apart: no iteration at all). On a compact cloud the two measures agree within a
+ *  factor of about 1.5 and the cap never applies; it bounds the scale where a few far
+ *  points are linked to the rest. Where most rows coincide (a median distance of 0), the
+ *  centred norm alone. */
 constexpr double kRobustScaleCap = 4.0;
 
 inline double
-residualScale (const Signal3 &f, int num_threads)
+residualScale (const PointGraph &graph, const Signal3 &f, int num_threads)
 {
-  const double centred = centredNorm (f, num_threads);
   const std::size_t n = static_cast<std::size_t> (f.rows ());
   if (n == 0)
-    return centred;
+    return 0.0;
+  const std::vector<VertexIndex> root = componentRoots (graph);
+  std::size_t components = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    components += root[i] == i;
+  double centred = 0.0;
+  if (components <= 1)
+    centred = centredNorm (f, num_threads);
+  else
+  {
+    // Each component's mean (kept at its root), then the rows' squares about it.
+    std::vector<Eigen::Vector3d> sum (n, Eigen::Vector3d::Zero ());
+    std::vector<std::size_t> size (n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      sum[root[i]] += f.row (static_cast<Eigen::Index> (i)).transpose ();
+      ++size[root[i]];
+    }
+    double squares = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const std::size_t r = root[i];
+      squares += (f.row (static_cast<Eigen::Index> (i)).transpose () - sum[r] / double (size[r]))
+                     .squaredNorm ();
+    }
+    centred = std::sqrt (squares);
+  }
   const std::size_t stride = std::max<std::size_t> (1, n / 20000);
   std::vector<double> values ((n + stride - 1) / stride);
   const auto middle = values.begin () + std::ptrdiff_t (values.size () / 2);

@@ -52,7 +52,7 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
     });
   };
 
-  const double scale = detail::residualScale (f, threads);
+  const double scale = detail::residualScale (graph, f, threads);
   Signal3 x = f, r (n, 3), z (n, 3), p (n, 3), q (n, 3);
   // r = f - A f = -2 gamma L f.
   applyA (x, q);
@@ -158,7 +158,7 @@ solveTikhonov (const PointGraph &graph, const Signal3 &f, double gamma,
     out.iterations = 1;
     Signal3 lx;
     applyLaplacian (graph, x, lx, params.num_threads);
-    const double scale = detail::residualScale (f, params.num_threads);
+    const double scale = detail::residualScale (graph, f, params.num_threads);
     out.residual = scale > 0.0 ? (x + 2.0 * gamma * lx - f).norm () / scale : 0.0;
     return x;
   }

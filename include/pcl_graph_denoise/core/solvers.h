@@ -49,9 +49,10 @@ struct TikhonovParams
   /** Which solver; default TikhonovSolver::CONJUGATE_GRADIENT. */
   TikhonovSolver solver = TikhonovSolver::CONJUGATE_GRADIENT;
   /** CG stops when |r| <= tolerance |f - mean(f)| (Frobenius norms over the three
-   *  columns; the mean, which the filter leaves unchanged, does not count; a few far
-   *  points cannot loosen it: the scale is at most 4 sqrt(N) times the median distance of
-   *  the points from their per-axis median, which a compact cloud never reaches). Since
+   *  columns; the mean of each connected component of the graph, which the solve leaves
+   *  unchanged, does not count, so that clusters far apart do not loosen it; nor can a
+   *  few far points: the scale is at most 4 sqrt(N) times the median distance of the
+   *  points from their per-axis median, which a compact cloud never reaches). Since
    *  I + 2 gamma L >= I, the solution's error is at most the residual: 1e-5 of the
    *  cloud's extent, far below any noise worth removing. */
   double tolerance = 1e-5;
