@@ -101,7 +101,10 @@ public:
    *  fewer than k + 1 points, every point links to all others. On such dense graphs
    *  (k beyond about 60) the local surfaces of the noise estimate, the normals and the
    *  quadrics take a point's neighbours only, at most its 1024 nearest, instead of its
-   *  two graph rings, so that their time stays linear in k. */
+   *  two graph rings, so that their time stays linear in k. A k far above 30 also widens
+   *  those local surfaces past the surface's curvature: on a 5,000-point noisy sphere the
+   *  noise estimate was 5 times the noise at k = 100, and at k = 1000 the output was
+   *  noisier than the input. */
   inline void
   setKSearch (int k) { k_ = k; }
 
