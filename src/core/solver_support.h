@@ -172,7 +172,7 @@ requireSolverInput (const PointGraph &graph, const Signal3 &f, double gamma, int
  *  entry and rows summing to 1, and clamping a point to the box lowers both terms of the
  *  total-variation objective. Nothing non-finite or that far off leaves a solver. */
 inline void
-requireFiniteResult (const Signal3 &x, const Signal3 &f, double gamma, const char *solver)
+requireSaneResult (const Signal3 &x, const Signal3 &f, double gamma, const char *solver)
 {
   char text[300];
   if (!x.allFinite ())

@@ -153,7 +153,7 @@ solveTikhonov (const PointGraph &graph, const Signal3 &f, double gamma,
   if (params.solver == TikhonovSolver::CHOLMOD)
   {
     Signal3 x = detail::solveTikhonovCholmod (graph, f, gamma);
-    detail::requireFiniteResult (x, f, gamma, "Tikhonov (CHOLMOD)");
+    detail::requireSaneResult (x, f, gamma, "Tikhonov (CHOLMOD)");
     out.converged = true;
     out.iterations = 1;
     Signal3 lx;
@@ -163,7 +163,7 @@ solveTikhonov (const PointGraph &graph, const Signal3 &f, double gamma,
     return x;
   }
   Signal3 x = conjugateGradient (graph, f, gamma, params, out);
-  detail::requireFiniteResult (x, f, gamma, "Tikhonov");
+  detail::requireSaneResult (x, f, gamma, "Tikhonov");
   return x;
 }
 

@@ -328,7 +328,7 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
     else
       x = f;
   }
-  detail::requireFiniteResult (x, f, gamma, "total-variation");
+  detail::requireSaneResult (x, f, gamma, "total-variation");
   return x;
 }
 
