@@ -1508,6 +1508,33 @@ TEST (SurfaceOffsets, LeaveASurfaceThatDidNotMoveWhereItIs)
   EXPECT_LT (radial / double (moving.rows ()), 0.2 * noise);
 }
 
+TEST (SurfaceOffsets, LeaveASurfaceSampledAtAnotherDensityWhereItIs)
+{
+  // One still sphere in two frames, one four times as dense as the other. The k nearest
+  // points of each frame span disks of different sizes, whose means lie below the
+  // sphere by different amounts: compared as they were, that read the curvature as an
+  // offset (the sparser frame's points moved out by about its noise level) and the
+  // rigid fit turned a noisy rotation of 0.05 into motion. Both frames are now compared
+  // over the same disk and the rigid motion is shrunk by its own significance.
+  const double noise = 0.01;
+  const PointMatrix sparse = matrixOf (synthetic::noisySphere (1000, 1.0, noise, 5));
+  const PointMatrix dense = matrixOf (synthetic::noisySphere (4000, 1.0, noise, 6));
+  for (const bool sparse_moves : {true, false})
+  {
+    const PointMatrix &moving = sparse_moves ? sparse : dense;
+    const Signal3 offsets = surfaceOffsets (moving, sparse_moves ? dense : sparse);
+    double radial = 0.0, moved = 0.0;
+    for (Eigen::Index i = 0; i < moving.rows (); ++i)
+    {
+      const Eigen::Vector3d p = moving.row (i).transpose ().cast<double> ();
+      radial += std::abs ((p + offsets.row (i).transpose ()).norm () - p.norm ());
+      moved += offsets.row (i).norm ();
+    }
+    EXPECT_LT (radial / double (moving.rows ()), 0.2 * noise) << "sparse moves: " << sparse_moves;
+    EXPECT_LT (moved / double (moving.rows ()), 0.3 * noise) << "sparse moves: " << sparse_moves;
+  }
+}
+
 TEST (SurfaceOffsets, NoOffsetWhereTheReferenceDoesNotCoverTheSurface)
 {
   // The reference covers x < 0 of a plane; the moving frame is the whole plane lifted by

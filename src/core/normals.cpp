@@ -506,6 +506,26 @@ struct LocalOffset
   bool matched = false;         ///< the reference samples the same part of the surface
 };
 
+/** The direction of least variance of the pooled scatter of two point sets, each about
+ *  its own mean (two locally parallel surfaces). */
+Eigen::Vector3d
+pooledNormal (const std::vector<Eigen::Vector3d> &a, const std::vector<Eigen::Vector3d> &b,
+              Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> &eig)
+{
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero ();
+  for (const std::vector<Eigen::Vector3d> *set : {&a, &b})
+  {
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero ();
+    for (const Eigen::Vector3d &p : *set)
+      mean += p;
+    mean /= double (std::max<std::size_t> (set->size (), 1));
+    for (const Eigen::Vector3d &p : *set)
+      scatter += (p - mean) * (p - mean).transpose ();
+  }
+  eig.compute (scatter);
+  return eig.eigenvectors ().col (0);
+}
+
 /** surfaceOffsets' estimate for every `stride`-th row of `current` (the moving points in
  *  Morton order, possibly moved rigidly; `own` lists each row's neighbours in its own
  *  cloud, `counts` per row, k slots per row), against the reference cloud's tree; the
@@ -517,54 +537,80 @@ localOffsets (const PointMatrix &current, const std::vector<VertexIndex> &own,
 {
   const std::size_t n = static_cast<std::size_t> (current.rows ());
   std::vector<LocalOffset> out (n);
+  // Up to this many reference points per point: a reference up to twice as dense
+  // samples the moving point's whole neighbourhood; a denser one, a smaller disk.
+  const int reference_cap = 2 * k;
   detail::parallelFor ((n + stride - 1) / stride, num_threads, [&] (std::size_t begin, std::size_t end) {
-    std::vector<VertexIndex> idx_b (k);
-    std::vector<float> d2 (k);
+    std::vector<VertexIndex> idx_b (static_cast<std::size_t> (reference_cap));
+    std::vector<float> d2 (static_cast<std::size_t> (reference_cap));
+    std::vector<Eigen::Vector3d> a, b;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
     for (std::size_t i = begin * stride; i < std::min (n, end * stride); i += stride)
     {
+      const Eigen::Vector3d q = current.row (static_cast<Eigen::Index> (i)).transpose ().cast<double> ();
       const VertexIndex *idx_a = own.data () + i * std::size_t (k);
-      const std::size_t na = counts[i];
-      const std::size_t nb =
-          other.nearest (current.row (static_cast<Eigen::Index> (i)).data (), k, idx_b.data (), d2.data ());
+      const std::size_t found =
+          other.nearest (current.row (static_cast<Eigen::Index> (i)).data (), reference_cap,
+                         idx_b.data (), d2.data ());
+      // Both surfaces sampled over the same disk around q: the mean of a curved patch
+      // lies below it by an amount that grows with the patch's extent, so neighbourhoods
+      // of different extents (frames of different densities) would read the curvature
+      // as an offset. The disk is measured across the normal of the two neighbourhoods
+      // as found (the surfaces may lie apart by more than its radius): the moving
+      // point's k nearest, or the reference's `reference_cap` nearest where those reach
+      // less far.
       const auto point = [] (const PointMatrix &p, VertexIndex r) {
         return Eigen::Vector3d (p.row (r).transpose ().cast<double> ());
       };
+      a.clear ();
+      b.clear ();
+      for (std::size_t m = 0; m < counts[i]; ++m)
+        a.push_back (point (current, idx_a[m]));
+      for (std::size_t m = 0; m < found; ++m)
+        b.push_back (point (reference, idx_b[m]));
+      const Eigen::Vector3d axis = pooledNormal (a, b, eig);
+      const auto across = [&] (const Eigen::Vector3d &p) {
+        const Eigen::Vector3d d = p - q;
+        return (d - d.dot (axis) * axis).squaredNorm ();
+      };
+      double radius2 = 0.0;
+      for (const Eigen::Vector3d &p : a)
+        radius2 = std::max (radius2, across (p));
+      if (found == static_cast<std::size_t> (reference_cap))
+      {
+        double reach2 = 0.0;
+        for (const Eigen::Vector3d &p : b)
+          reach2 = std::max (reach2, across (p));
+        radius2 = std::min (radius2, reach2);
+      }
+      const auto outside = [&] (const Eigen::Vector3d &p) { return across (p) > radius2; };
+      a.erase (std::remove_if (a.begin (), a.end (), outside), a.end ());
+      b.erase (std::remove_if (b.begin (), b.end (), outside), b.end ());
+      LocalOffset &o = out[i];
+      const std::size_t na = a.size (), nb = b.size ();
+      if (na < 3 || nb < 3)
+        continue;  // too few points of one cloud in the disk: unmatched
       Eigen::Vector3d ca = Eigen::Vector3d::Zero (), cb = Eigen::Vector3d::Zero ();
-      for (std::size_t m = 0; m < na; ++m)
-        ca += point (current, idx_a[m]);
-      for (std::size_t m = 0; m < nb; ++m)
-        cb += point (reference, idx_b[m]);
+      for (const Eigen::Vector3d &p : a)
+        ca += p;
+      for (const Eigen::Vector3d &p : b)
+        cb += p;
       ca /= double (na);
       cb /= double (nb);
-      // The pooled scatter of both neighbourhoods, each about its own mean.
-      Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero ();
-      for (std::size_t m = 0; m < na; ++m)
-      {
-        const Eigen::Vector3d d = point (current, idx_a[m]) - ca;
-        scatter += d * d.transpose ();
-      }
-      for (std::size_t m = 0; m < nb; ++m)
-      {
-        const Eigen::Vector3d d = point (reference, idx_b[m]) - cb;
-        scatter += d * d.transpose ();
-      }
-      eig.compute (scatter);
-      LocalOffset &o = out[i];
-      o.normal = eig.eigenvectors ().col (0);
+      o.normal = pooledNormal (a, b, eig);
       double sa = 0.0, sb = 0.0;
-      for (std::size_t m = 0; m < na; ++m)
-        sa += std::pow (o.normal.dot (point (current, idx_a[m]) - ca), 2);
-      for (std::size_t m = 0; m < nb; ++m)
-        sb += std::pow (o.normal.dot (point (reference, idx_b[m]) - cb), 2);
+      for (const Eigen::Vector3d &p : a)
+        sa += std::pow (o.normal.dot (p - ca), 2);
+      for (const Eigen::Vector3d &p : b)
+        sb += std::pow (o.normal.dot (p - cb), 2);
       o.standard_error =
           std::sqrt (sa / (double (na) * double (na - 1)) + sb / (double (nb) * double (nb - 1)));
       o.offset = o.normal.dot (cb - ca);
       // Without a counterpart (the reference does not cover this part of the surface, its
       // nearest points are off to the side), no offset.
       double reach = 0.0;
-      for (std::size_t m = 0; m < na; ++m)
-        reach = std::max (reach, (point (current, idx_a[m]) - ca).norm ());
+      for (const Eigen::Vector3d &p : a)
+        reach = std::max (reach, (p - ca).norm ());
       o.matched = (cb - ca - o.offset * o.normal).norm () <= reach;
       if (!o.matched)
         o.offset = 0.0;
@@ -577,11 +623,15 @@ localOffsets (const PointMatrix &current, const std::vector<VertexIndex> &own,
  *  explains the offsets along the normals, n . (omega x (q - c) + tau) = offset, in least
  *  squares over the points whose residual is within 3 robust deviations of the first
  *  fit's. Directions the normals do not constrain (turning a sphere about its centre,
- *  sliding a plane along itself) get no motion. Only the matched points take part. Returns
- *  false when fewer than 6 are matched or the step is negligible. */
+ *  sliding a plane along itself) get no motion, and each principal direction of the fit
+ *  is shrunk as the offsets are (non-negative garrote at `significance` of its standard
+ *  error, from the residuals' robust spread): few or noisy offsets, or normals that
+ *  barely constrain a direction, make no motion out of their noise. Only the matched
+ *  points take part. Returns false when fewer than 6 are matched or the step is
+ *  negligible. */
 bool
 rigidStep (const PointMatrix &current, const std::vector<LocalOffset> &offsets,
-           Eigen::Matrix3d &rotation, Eigen::Vector3d &translation)
+           double significance, Eigen::Matrix3d &rotation, Eigen::Vector3d &translation)
 {
   const std::size_t n = offsets.size ();
   const Eigen::Vector3d centre = current.colwise ().mean ().transpose ().cast<double> ();
@@ -604,18 +654,24 @@ rigidStep (const PointMatrix &current, const std::vector<LocalOffset> &offsets,
   std::vector<double> residual (n, 0.0);
   Vector6d x = Vector6d::Zero ();
   double cut = std::numeric_limits<double>::infinity ();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig;
+  Vector6d g;
+  // The offsets' own errors carried through the fit: sum of a a^T se^2.
+  Eigen::Matrix<double, 6, 6> offset_errors;
   for (int pass = 0; pass < 2; ++pass)
   {
     Eigen::Matrix<double, 6, 6> h = Eigen::Matrix<double, 6, 6>::Zero ();
-    Vector6d g = Vector6d::Zero ();
+    g.setZero ();
+    offset_errors.setZero ();
     for (std::size_t i = 0; i < n; ++i)
       if (offsets[i].matched && std::abs (residual[i]) <= cut)
       {
         const Vector6d a = row (i);
         h += a * a.transpose ();
         g += a * offsets[i].offset;
+        offset_errors += a * a.transpose () * (offsets[i].standard_error * offsets[i].standard_error);
       }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig (h);
+    eig.compute (h);
     const double largest = eig.eigenvalues ().maxCoeff ();
     if (!(largest > 0.0))
       return false;
@@ -633,6 +689,27 @@ rigidStep (const PointMatrix &current, const std::vector<LocalOffset> &offsets,
     const std::size_t half = abs_residual.size () / 2;
     std::nth_element (abs_residual.begin (), abs_residual.begin () + half, abs_residual.end ());
     cut = 3.0 * abs_residual[half] / 0.6744897501960817;
+  }
+  // Each principal component c of the last fit, shrunk: 0 below `significance`
+  // standard errors, c - limit^2 / c above. Its standard error: the larger of the one
+  // the residuals' spread gives, spread / sqrt (eigenvalue), and the one the offsets'
+  // own standard errors give (a few offsets fit by six parameters leave small
+  // residuals). Directions constrained a hundred times less than the best one (the
+  // normals' noise alone) get no motion.
+  const double spread = cut / 3.0;
+  const double largest = eig.eigenvalues ().maxCoeff ();
+  x.setZero ();
+  for (int e = 0; e < 6; ++e)
+  {
+    const double lambda = eig.eigenvalues ()[e];
+    if (!(lambda > 1e-2 * largest))
+      continue;
+    const Vector6d v = eig.eigenvectors ().col (e);
+    const double c = v.dot (g) / lambda;
+    const double error = std::max (spread / std::sqrt (lambda), std::sqrt (v.dot (offset_errors * v)) / lambda);
+    const double limit = significance * error;
+    if (std::abs (c) > limit)
+      x += eig.eigenvectors ().col (e) * (c - limit * limit / c);
   }
   // Done when the step moves no point by more than a hundredth of the offsets' typical
   // standard error (x is in length units: the rotation part is scaled by the radius, and
@@ -690,7 +767,7 @@ orderedSurfaceOffsets (const PointMatrix &moving, const PointMatrix &reference,
   {
     Eigen::Matrix3d rotation;
     Eigen::Vector3d translation;
-    if (!rigidStep (current, local, rotation, translation))
+    if (!rigidStep (current, local, params.significance, rotation, translation))
       break;
     total_rotation = rotation * total_rotation;
     total_translation = rotation * total_translation + translation;
