@@ -507,19 +507,21 @@ struct LocalOffset
 };
 
 /** The direction of least variance of the pooled scatter of two point sets, each about
- *  its own mean (two locally parallel surfaces). */
+ *  its own mean (two locally parallel surfaces); the means in `means`. */
 Eigen::Vector3d
 pooledNormal (const std::vector<Eigen::Vector3d> &a, const std::vector<Eigen::Vector3d> &b,
-              Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> &eig)
+              Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> &eig, Eigen::Vector3d (&means)[2])
 {
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero ();
-  for (const std::vector<Eigen::Vector3d> *set : {&a, &b})
+  const std::vector<Eigen::Vector3d> *sets[2] = {&a, &b};
+  for (int s = 0; s < 2; ++s)
   {
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero ();
-    for (const Eigen::Vector3d &p : *set)
+    Eigen::Vector3d &mean = means[s];
+    mean.setZero ();
+    for (const Eigen::Vector3d &p : *sets[s])
       mean += p;
-    mean /= double (std::max<std::size_t> (set->size (), 1));
-    for (const Eigen::Vector3d &p : *set)
+    mean /= double (std::max<std::size_t> (sets[s]->size (), 1));
+    for (const Eigen::Vector3d &p : *sets[s])
       scatter += (p - mean) * (p - mean).transpose ();
   }
   eig.compute (scatter);
@@ -568,7 +570,8 @@ localOffsets (const PointMatrix &current, const std::vector<VertexIndex> &own,
         a.push_back (point (current, idx_a[m]));
       for (std::size_t m = 0; m < found; ++m)
         b.push_back (point (reference, idx_b[m]));
-      const Eigen::Vector3d axis = pooledNormal (a, b, eig);
+      Eigen::Vector3d means[2];
+      const Eigen::Vector3d axis = pooledNormal (a, b, eig, means);
       const auto across = [&] (const Eigen::Vector3d &p) {
         const Eigen::Vector3d d = p - q;
         return (d - d.dot (axis) * axis).squaredNorm ();
@@ -590,14 +593,8 @@ localOffsets (const PointMatrix &current, const std::vector<VertexIndex> &own,
       const std::size_t na = a.size (), nb = b.size ();
       if (na < 3 || nb < 3)
         continue;  // too few points of one cloud in the disk: unmatched
-      Eigen::Vector3d ca = Eigen::Vector3d::Zero (), cb = Eigen::Vector3d::Zero ();
-      for (const Eigen::Vector3d &p : a)
-        ca += p;
-      for (const Eigen::Vector3d &p : b)
-        cb += p;
-      ca /= double (na);
-      cb /= double (nb);
-      o.normal = pooledNormal (a, b, eig);
+      o.normal = pooledNormal (a, b, eig, means);
+      const Eigen::Vector3d &ca = means[0], &cb = means[1];
       double sa = 0.0, sb = 0.0;
       for (const Eigen::Vector3d &p : a)
         sa += std::pow (o.normal.dot (p - ca), 2);
@@ -625,8 +622,10 @@ localOffsets (const PointMatrix &current, const std::vector<VertexIndex> &own,
  *  fit's. Directions the normals do not constrain (turning a sphere about its centre,
  *  sliding a plane along itself) get no motion, and each principal direction of the fit
  *  is shrunk as the offsets are (non-negative garrote at `significance` of its standard
- *  error, from the residuals' robust spread): few or noisy offsets, or normals that
- *  barely constrain a direction, make no motion out of their noise. Only the matched
+ *  error, the larger of the residuals' robust spread and the offsets' own standard errors
+ *  carried through the fit; directions constrained a hundred times less than the best
+ *  get none): few or noisy offsets, or normals that barely constrain a direction, make
+ *  no motion out of their noise. Only the matched
  *  points take part. Returns false when fewer than 6 are matched or the step is
  *  negligible. */
 bool
