@@ -53,11 +53,19 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
   };
 
   const double scale = detail::residualScale (graph, f, threads);
-  Signal3 x = f, r (n, 3), z (n, 3), p (n, 3), q (n, 3);
+  // The Jacobi preconditioner's diagonal; its product with r is taken where it is used
+  // rather than stored (one array fewer to write and read back per iteration: the loop
+  // is bound by memory traffic).
+  std::vector<double> inverse_diagonal (n);
+  detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      inverse_diagonal[i] = 1.0 / (1.0 + g2 * degree[i]);
+  });
+  Signal3 x = f, r (n, 3), p (n, 3), q (n, 3);
   // r = f - A f = -2 gamma L f.
   applyA (x, q);
   r = f - q;
-  // The squared norm of r, and its preconditioned copy z with the dot products r . z.
+  // The squared norm of r and the dot products r . z with its preconditioned copy z.
   struct Residual
   {
     double rr = 0.0;
@@ -70,23 +78,25 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
       return *this;
     }
   };
-  const auto preconditionRow = [&] (std::size_t i, Residual &sums) {
-    const double m = 1.0 / (1.0 + g2 * degree[i]);
+  const auto sumRow = [&] (std::size_t i, Residual &sums) {
+    const double m = inverse_diagonal[i];
     for (int c = 0; c < 3; ++c)
     {
       sums.rr += r (i, c) * r (i, c);
-      z (i, c) = m * r (i, c);
-      sums.rz.v[c] += r (i, c) * z (i, c);
+      sums.rz.v[c] += r (i, c) * (m * r (i, c));
     }
   };
   Residual sums = detail::parallelSum<Residual> (n, threads, [&] (std::size_t begin, std::size_t end) {
     Residual partial;
     for (std::size_t i = begin; i < end; ++i)
-      preconditionRow (i, partial);
+    {
+      sumRow (i, partial);
+      for (int c = 0; c < 3; ++c)
+        p (i, c) = inverse_diagonal[i] * r (i, c);
+    }
     return partial;
   });
   detail::Sum3 rz = sums.rz;
-  p = z;
   double residual = std::sqrt (sums.rr);
   report.residual = scale > 0.0 ? residual / scale : 0.0;
   report.converged = residual <= params.tolerance * scale;
@@ -97,7 +107,7 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
     double alpha[3];
     for (int c = 0; c < 3; ++c)
       alpha[c] = pq.v[c] > 0.0 ? rz.v[c] / pq.v[c] : 0.0;
-    // The step, the new residual and its preconditioned copy in one pass.
+    // The step and the new residual's sums in one pass.
     sums = detail::parallelSum<Residual> (n, threads, [&] (std::size_t begin, std::size_t end) {
       Residual partial;
       for (std::size_t i = begin; i < end; ++i)
@@ -107,7 +117,7 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
           x (i, c) += alpha[c] * p (i, c);
           r (i, c) -= alpha[c] * q (i, c);
         }
-        preconditionRow (i, partial);
+        sumRow (i, partial);
       }
       return partial;
     });
@@ -125,8 +135,11 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
     rz = sums.rz;
     detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i)
+      {
+        const double m = inverse_diagonal[i];
         for (int c = 0; c < 3; ++c)
-          p (i, c) = z (i, c) + beta[c] * p (i, c);
+          p (i, c) = m * r (i, c) + beta[c] * p (i, c);
+      }
     });
   }
   report.iterations = it;
