@@ -1535,6 +1535,60 @@ TEST (SurfaceOffsets, LeaveASurfaceSampledAtAnotherDensityWhereItIs)
   }
 }
 
+TEST (SurfaceOffsets, LeaveAStillCubeWhereItIsAtItsEdges)
+{
+  // One still cube in two frames of the same density. Near an edge the disk compared
+  // across the normal takes in points of the other face beyond a point's k nearest:
+  // taken so for the reference only (its 2k nearest) and not for the moving frame (its
+  // k nearest), the two neighbourhoods differed and the edges read as an offset of
+  // about half the noise level. Both are now taken from the same pool and ball.
+  const double noise = 0.005;
+  const PointMatrix moving = matrixOf (synthetic::noisyCube (5000, noise, 11));
+  const Signal3 offsets = surfaceOffsets (moving, matrixOf (synthetic::noisyCube (5000, noise, 99)));
+  double edges = 0.0;
+  int count = 0;
+  for (Eigen::Index i = 0; i < moving.rows (); ++i)
+  {
+    int faces = 0;
+    for (int c = 0; c < 3; ++c)
+      faces += std::abs (std::abs (moving (i, c)) - 1.0f) < 0.1f;
+    if (faces >= 2)
+    {
+      edges += offsets.row (i).norm ();
+      ++count;
+    }
+  }
+  ASSERT_GT (count, 500);
+  EXPECT_LT (edges / count, 0.25 * noise);
+}
+
+TEST (SurfaceOffsets, MeasureAnOffsetLargerThanTheNeighbourhood)
+{
+  // A plane lifted by 0.2, twice the reach of its points' 30 nearest (spacing 0.03):
+  // the reference's points are compared over a ball around the moving point moved by
+  // the two neighbourhoods' offset, not around the point itself, which holds none of
+  // them. Without the rigid rounds, so that the local offsets alone carry it.
+  const double noise = 0.005, lift = 0.2;
+  Eigen::Isometry3d up = Eigen::Isometry3d::Identity ();
+  up.translate (Eigen::Vector3d (0.0, 0.0, lift));
+  const PointMatrix moving = matrixOf (synthetic::noisyPlane (4000, noise, 21));
+  SurfaceOffsetParams params;
+  params.rigid_iterations = 0;
+  const Signal3 offsets = surfaceOffsets (moving, matrixOf (synthetic::noisyPlane (4000, noise, 22), up), params);
+  EXPECT_NEAR (offsets.col (2).mean (), lift, 0.02 * lift);
+  // Along the normal, up to the tilt of its estimate, away from the plane's border
+  // (whose normals tilt further).
+  double sideways = 0.0;
+  int inner = 0;
+  for (Eigen::Index i = 0; i < moving.rows (); ++i)
+    if (moving.row (i).head<2> ().cwiseAbs ().maxCoeff () < 0.8f)
+    {
+      sideways += offsets.row (i).head<2> ().norm ();
+      ++inner;
+    }
+  EXPECT_LT (sideways / inner, 0.02 * lift);
+}
+
 TEST (SurfaceOffsets, NoOffsetWhereTheReferenceDoesNotCoverTheSurface)
 {
   // The reference covers x < 0 of a plane; the moving frame is the whole plane lifted by

@@ -529,9 +529,9 @@ pooledNormal (const std::vector<Eigen::Vector3d> &a, const std::vector<Eigen::Ve
 }
 
 /** surfaceOffsets' estimate for every `stride`-th row of `current` (the moving points in
- *  Morton order, possibly moved rigidly; `own` lists each row's neighbours in its own
- *  cloud, `counts` per row, k slots per row), against the reference cloud's tree; the
- *  other rows are left unmatched. */
+ *  Morton order, possibly moved rigidly; `own` lists each row's 2k nearest points in its
+ *  own cloud, nearest first, `counts` per row, 2k slots per row), against the reference
+ *  cloud's tree; the other rows are left unmatched. */
 std::vector<LocalOffset>
 localOffsets (const PointMatrix &current, const std::vector<VertexIndex> &own,
               const std::vector<std::size_t> &counts, const PointMatrix &reference,
@@ -539,7 +539,7 @@ localOffsets (const PointMatrix &current, const std::vector<VertexIndex> &own,
 {
   const std::size_t n = static_cast<std::size_t> (current.rows ());
   std::vector<LocalOffset> out (n);
-  // Up to this many reference points per point: a reference up to twice as dense
+  // Up to this many points of either cloud per point: a reference up to twice as dense
   // samples the moving point's whole neighbourhood; a denser one, a smaller disk.
   const int reference_cap = 2 * k;
   detail::parallelFor ((n + stride - 1) / stride, num_threads, [&] (std::size_t begin, std::size_t end) {
@@ -550,7 +550,7 @@ localOffsets (const PointMatrix &current, const std::vector<VertexIndex> &own,
     for (std::size_t i = begin * stride; i < std::min (n, end * stride); i += stride)
     {
       const Eigen::Vector3d q = current.row (static_cast<Eigen::Index> (i)).transpose ().cast<double> ();
-      const VertexIndex *idx_a = own.data () + i * std::size_t (k);
+      const VertexIndex *idx_a = own.data () + i * std::size_t (reference_cap);
       const std::size_t found =
           other.nearest (current.row (static_cast<Eigen::Index> (i)).data (), reference_cap,
                          idx_b.data (), d2.data ());
@@ -558,15 +558,19 @@ localOffsets (const PointMatrix &current, const std::vector<VertexIndex> &own,
       // lies below it by an amount that grows with the patch's extent, so neighbourhoods
       // of different extents (frames of different densities) would read the curvature
       // as an offset. The disk is measured across the normal of the two neighbourhoods
-      // as found (the surfaces may lie apart by more than its radius): the moving
-      // point's k nearest, or the reference's `reference_cap` nearest where those reach
-      // less far.
+      // as found, the moving point's k nearest and the reference's `reference_cap`
+      // nearest (the surfaces may lie apart by more than its radius): as far as the
+      // moving point's k nearest reach, or the reference's where those reach less far.
+      // Both clouds' points are taken from their `reference_cap` nearest alike, so that
+      // at a sharp edge, where the disk's cylinder takes in points of the other face
+      // beyond the k nearest, it does so for both.
       const auto point = [] (const PointMatrix &p, VertexIndex r) {
         return Eigen::Vector3d (p.row (r).transpose ().cast<double> ());
       };
+      const std::size_t own_k = std::min<std::size_t> (counts[i], std::size_t (k));
       a.clear ();
       b.clear ();
-      for (std::size_t m = 0; m < counts[i]; ++m)
+      for (std::size_t m = 0; m < own_k; ++m)
         a.push_back (point (current, idx_a[m]));
       for (std::size_t m = 0; m < found; ++m)
         b.push_back (point (reference, idx_b[m]));
@@ -579,6 +583,8 @@ localOffsets (const PointMatrix &current, const std::vector<VertexIndex> &own,
       double radius2 = 0.0;
       for (const Eigen::Vector3d &p : a)
         radius2 = std::max (radius2, across (p));
+      for (std::size_t m = own_k; m < counts[i]; ++m)
+        a.push_back (point (current, idx_a[m]));
       if (found == static_cast<std::size_t> (reference_cap))
       {
         double reach2 = 0.0;
@@ -586,9 +592,30 @@ localOffsets (const PointMatrix &current, const std::vector<VertexIndex> &own,
           reach2 = std::max (reach2, across (p));
         radius2 = std::min (radius2, reach2);
       }
-      const auto outside = [&] (const Eigen::Vector3d &p) { return across (p) > radius2; };
-      a.erase (std::remove_if (a.begin (), a.end (), outside), a.end ());
-      b.erase (std::remove_if (b.begin (), b.end (), outside), b.end ());
+      // And within one ball that both pools cover, around q for the moving points and
+      // around q moved by the neighbourhoods' offset for the reference.
+      const Eigen::Vector3d q_b = q + axis * axis.dot (means[1] - means[0]);
+      double ball2 = std::numeric_limits<double>::infinity ();
+      if (counts[i] == std::size_t (reference_cap))
+      {
+        double r2 = 0.0;
+        for (const Eigen::Vector3d &p : a)
+          r2 = std::max (r2, (p - q).squaredNorm ());
+        ball2 = std::min (ball2, r2);
+      }
+      if (found == std::size_t (reference_cap))
+      {
+        double r2 = 0.0;
+        for (const Eigen::Vector3d &p : b)
+          r2 = std::max (r2, (p - q_b).squaredNorm ());
+        ball2 = std::min (ball2, r2);
+      }
+      a.erase (std::remove_if (a.begin (), a.end (), [&] (const Eigen::Vector3d &p) {
+        return across (p) > radius2 || (p - q).squaredNorm () > ball2;
+      }), a.end ());
+      b.erase (std::remove_if (b.begin (), b.end (), [&] (const Eigen::Vector3d &p) {
+        return across (p) > radius2 || (p - q_b).squaredNorm () > ball2;
+      }), b.end ());
       LocalOffset &o = out[i];
       const std::size_t na = a.size (), nb = b.size ();
       if (na < 3 || nb < 3)
@@ -738,17 +765,19 @@ orderedSurfaceOffsets (const PointMatrix &moving, const PointMatrix &reference,
   Signal3 offsets = Signal3::Zero (moving.rows (), 3);
   const int k = params.k;
 
-  // Each moving point's neighbours in its own cloud (they stay its neighbours under a
-  // rigid motion).
-  std::vector<VertexIndex> own (n * std::size_t (k));
+  // Each moving point's 2k nearest points in its own cloud, nearest first (they stay its
+  // neighbours under a rigid motion): localOffsets compares disks of them, the offsets
+  // are averaged over the k nearest.
+  const std::size_t slots = 2 * std::size_t (k);
+  std::vector<VertexIndex> own (n * slots);
   std::vector<std::size_t> counts (n);
   {
     const detail::KdTree tree (moving);
     detail::parallelFor (n, params.num_threads, [&] (std::size_t begin, std::size_t end) {
-      std::vector<float> d2 (k);
+      std::vector<float> d2 (slots);
       for (std::size_t i = begin; i < end; ++i)
-        counts[i] = tree.nearest (moving.row (static_cast<Eigen::Index> (i)).data (), k,
-                                  own.data () + i * std::size_t (k), d2.data ());
+        counts[i] = tree.nearest (moving.row (static_cast<Eigen::Index> (i)).data (), int (slots),
+                                  own.data () + i * slots, d2.data ());
     });
   }
   const detail::KdTree other (reference);
@@ -793,12 +822,13 @@ orderedSurfaceOffsets (const PointMatrix &moving, const PointMatrix &reference,
   detail::parallelFor (n, params.num_threads, [&] (std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {
+      const std::size_t count = std::min (counts[i], std::size_t (k));
       Eigen::RowVector3d sum = Eigen::RowVector3d::Zero ();
-      for (std::size_t m = 0; m < counts[i]; ++m)
-        sum += shrunk.row (own[i * std::size_t (k) + m]);
+      for (std::size_t m = 0; m < count; ++m)
+        sum += shrunk.row (own[i * slots + m]);
       offsets.row (static_cast<Eigen::Index> (i)) =
           current.row (static_cast<Eigen::Index> (i)).cast<double> () -
-          moving.row (static_cast<Eigen::Index> (i)).cast<double> () + sum / double (counts[i]);
+          moving.row (static_cast<Eigen::Index> (i)).cast<double> () + sum / double (count);
     }
   });
   return offsets;

@@ -119,10 +119,13 @@ struct SurfaceOffsetParams
 /** \brief For every point q of `moving`, the displacement that carries the surface
  *  `moving` samples around q onto the surface `reference` samples there (motion
  *  compensation between two frames of a sequence). The local offset: A and B are the
- *  points of `moving` and `reference` over one disk around q, measured across the
- *  surfaces' normal (the k nearest points of q in `moving`, q included, or the 2k nearest
- *  in `reference` where those reach less far), so that frames of different densities
- *  sample the same part of a curved surface; n the direction of least variance of A and
+ *  points of `moving` and `reference` among the 2k nearest of q in each, over one disk
+ *  around q measured across the surfaces' normal (as far as q's k nearest in `moving`
+ *  reach, q included, or the 2k nearest in `reference` where those reach less far) and
+ *  within one ball that both sets of 2k cover (around q for A, around q moved by the
+ *  neighbourhoods' offset for B), so that frames of different densities sample the same
+ *  part of a curved surface and both take in as much of the other face at a sharp edge;
+ *  n the direction of least variance of A and
  *  B each about its own mean (the two surfaces are locally parallel); the offset is
  *  n . (mean B - mean A), with a standard error from the spread of A and B about their
  *  planes; 0 where either has fewer than 3 points in the disk or B's mean lies off to the
@@ -131,7 +134,7 @@ struct SurfaceOffsetParams
  *  rigid_iterations rounds, each principal direction of the fit shrunk as the offsets
  *  are) is applied; then each point also moves along n by its remaining offset, shrunk where it is
  *  not significant (non-negative garrote: 0 below `significance` standard errors, offset -
- *  limit^2 / offset above) and averaged over A (a surface moves smoothly; the noise of the
+ *  limit^2 / offset above) and averaged over q's k nearest (a surface moves smoothly; the noise of the
  *  estimates does not). Only the part of a motion that moves the surface is seen (a
  *  surface sliding along itself gives no offset, and needs none for smoothing). Zero for
  *  every point when either cloud has fewer than 3 points. The result is independent of
