@@ -51,6 +51,7 @@ filterCloud (tools::CloudFile &file, const std::string &path, bool tv)
   const std::size_t size = std::size_t (file.cloud.width) * file.cloud.height;
   FUZZ_CHECK (size > 0);
   tools::XyzFields xyz (file.cloud, path);  // throws tools::Error without x, y, z
+  xyz.centreOn (file.cloud);
   Cloud::Ptr input = xyz.extract (file.cloud);
   FUZZ_CHECK (input->size () == size);
   std::size_t finite_points = 0;
@@ -97,7 +98,7 @@ filterCloud (tools::CloudFile &file, const std::string &path, bool tv)
   FUZZ_CHECK (output.size () == input->size ());
   for (std::size_t i = 0; i < output.size (); ++i)
     FUZZ_CHECK (pcl::isXYZFinite (output[i]));
-  tools::XyzFields (file.cloud, path).writeBack (file.cloud, *input, output);
+  xyz.writeBack (file.cloud, *input, output);
   const Cloud::Ptr after = xyz.extract (file.cloud);
   FUZZ_CHECK (after->size () == output.size ());
 }

@@ -611,6 +611,98 @@ TEST (Cli, DoubleCoordinatesStayDoublesAndMoveByTheDisplacement)
   EXPECT_GT (moved, size (input) / 2);
 }
 
+/** `cloud` (double x, y, z) moved by `shift`. */
+PCLPointCloud2
+shifted (PCLPointCloud2 cloud, const Eigen::Vector3d &shift)
+{
+  const char *names[3] = {"x", "y", "z"};
+  for (std::size_t i = 0; i < size (cloud); ++i)
+    for (int d = 0; d < 3; ++d)
+    {
+      const PCLPointField &f = *field (cloud, names[d]);
+      std::uint8_t *p = cloud.data.data () + (i / cloud.width) * cloud.row_step +
+                        (i % cloud.width) * cloud.point_step + f.offset;
+      double v;
+      std::memcpy (&v, p, 8);
+      v += shift[d];
+      std::memcpy (p, &v, 8);
+    }
+  return cloud;
+}
+
+TEST (Cli, GeoReferencedDoubleCoordinatesKeepTheirPrecision)
+{
+  // A sphere of radius 1 with UTM-like coordinates (4,000 km north): as floats its y
+  // steps by 0.25 and the tool saw a cloud without noise, and moved nothing. The tool
+  // works about the centre of the doubles instead: the same result as at the origin,
+  // for one file and for the frames of a sequence.
+  const fs::path dir = testFolder ();
+  const Eigen::Vector3d far (500000.0, 4000000.0, 100.0);
+  std::vector<PCLPointCloud2> near_frames, far_frames;
+  for (std::uint64_t t = 0; t < 2; ++t)
+  {
+    const auto xyz = pcl_graph_denoise::synthetic::noisySphere (1500, 1.0, 0.01, 30 + t);
+    near_frames.push_back (makeCloud (xyz, PCLPointField::FLOAT64, static_cast<std::uint32_t> (xyz.size ()), 1));
+    far_frames.push_back (shifted (near_frames.back (), far));
+    savePcd (dir / ("near" + std::to_string (t) + ".pcd"), near_frames.back ());
+    savePcd (dir / ("far" + std::to_string (t) + ".pcd"), far_frames.back ());
+  }
+  fs::create_directories (dir / "near_out");
+  fs::create_directories (dir / "far_out");
+  // The runs at the origin and far away, and the first frame's output of each.
+  struct Case
+  {
+    std::vector<std::string> near_args, far_args;
+    std::string near_output, far_output;
+  };
+  const std::vector<Case> cases = {
+      {{"near0.pcd", "near_tv.pcd", "-tv"}, {"far0.pcd", "far_tv.pcd", "-tv"}, "near_tv.pcd", "far_tv.pcd"},
+      {{"near0.pcd", "near1.pcd", "near_out", "-temporal"},
+       {"far0.pcd", "far1.pcd", "far_out", "-temporal"},
+       "near_out/near0.pcd",
+       "far_out/far0.pcd"}};
+  for (const Case &c : cases)
+  {
+    for (const auto *args : {&c.near_args, &c.far_args})
+    {
+      const ToolRun run = runTool (dir, *args);
+      ASSERT_EQ (run.code, 0) << describe (*args, run);
+    }
+    const PCLPointCloud2 near_out = load (dir / c.near_output);
+    const PCLPointCloud2 far_out = load (dir / c.far_output);
+    const PCLPointCloud2 &near_in = near_frames[0];
+    ASSERT_EQ (size (far_out), size (near_in));
+    double moved = 0.0, differ = 0.0;
+    const char *names[3] = {"x", "y", "z"};
+    for (std::size_t i = 0; i < size (near_in); ++i)
+      for (int d = 0; d < 3; ++d)
+      {
+        const double near_move = coordinate (near_out, i, names[d]) - coordinate (near_in, i, names[d]);
+        const double far_move = coordinate (far_out, i, names[d]) - far[d] - coordinate (near_in, i, names[d]);
+        moved += std::abs (near_move);
+        differ += std::abs (far_move - near_move);
+      }
+    EXPECT_GT (moved / double (size (near_in)), 0.003) << c.near_args.back ();
+    EXPECT_LT (differ, 0.01 * moved) << c.near_args.back ();
+  }
+}
+
+TEST (Cli, RemovedMayNotNameTheInput)
+{
+  const fs::path dir = testFolder ();
+  savePcd (dir / "in.pcd", sphereWithOutliers ());
+  const std::string before = readFile (dir / "in.pcd");
+  for (const std::string &removed : {"in.pcd", "./in.pcd"})
+  {
+    const std::vector<std::string> args = {"in.pcd", "out.pcd", "-outliers", "-removed", removed};
+    const ToolRun run = runTool (dir, args);
+    EXPECT_EQ (run.code, 2) << describe (args, run);
+    EXPECT_NE (run.err.find ("-removed names the input file"), std::string::npos) << run.err;
+    EXPECT_EQ (readFile (dir / "in.pcd"), before);
+    EXPECT_FALSE (fs::exists (dir / "out.pcd"));
+  }
+}
+
 TEST (Cli, GammaZeroIsTheIdentityInBothSyntaxes)
 {
   const fs::path dir = testFolder ();

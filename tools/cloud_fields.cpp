@@ -8,9 +8,11 @@
 
 #include <pcl/common/io.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 
 namespace pcl_graph_denoise {
 namespace tools {
@@ -102,9 +104,9 @@ XyzFields::extract (const pcl::PCLPointCloud2 &cloud) const
   {
     const std::uint8_t *p = pointData (cloud, i);
     pcl::PointXYZ &q = (*xyz)[i];
-    q.x = static_cast<float> (readCoordinate (p + field_[0].offset, field_[0].datatype));
-    q.y = static_cast<float> (readCoordinate (p + field_[1].offset, field_[1].datatype));
-    q.z = static_cast<float> (readCoordinate (p + field_[2].offset, field_[2].datatype));
+    float *out[3] = {&q.x, &q.y, &q.z};
+    for (int d = 0; d < 3; ++d)
+      *out[d] = static_cast<float> (readCoordinate (p + field_[d].offset, field_[d].datatype) - origin_[d]);
     dense = dense && std::isfinite (q.x) && std::isfinite (q.y) && std::isfinite (q.z);
   }
   xyz->is_dense = dense;
@@ -129,7 +131,7 @@ XyzFields::writeBack (pcl::PCLPointCloud2 &cloud, const pcl::PointCloud<pcl::Poi
     {
       std::uint8_t *value = p + field_[d].offset;
       if (field_[d].datatype == pcl::PCLPointField::FLOAT32)
-        writeCoordinate (value, field_[d].datatype, new_value[d]);
+        writeCoordinate (value, field_[d].datatype, double (new_value[d]) + origin_[d]);
       else
         writeCoordinate (value, field_[d].datatype,
                          readCoordinate (value, field_[d].datatype) +
@@ -137,6 +139,53 @@ XyzFields::writeBack (pcl::PCLPointCloud2 &cloud, const pcl::PointCloud<pcl::Poi
     }
   }
   return moved;
+}
+
+void
+setCommonOrigin (std::vector<XyzFields> &fields, const std::vector<const pcl::PCLPointCloud2 *> &clouds)
+{
+  if (fields.size () != clouds.size ())
+    throw std::invalid_argument ("setCommonOrigin: one cloud per set of fields");
+  double low[3], high[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    low[d] = std::numeric_limits<double>::infinity ();
+    high[d] = -std::numeric_limits<double>::infinity ();
+  }
+  for (std::size_t c = 0; c < clouds.size (); ++c)
+  {
+    const XyzFields &f = fields[c];
+    const std::size_t n = std::size_t (clouds[c]->width) * clouds[c]->height;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const std::uint8_t *p = pointData (*clouds[c], i);
+      double v[3];
+      for (int d = 0; d < 3; ++d)
+        v[d] = readCoordinate (p + f.field_[d].offset, f.field_[d].datatype);
+      if (!(std::isfinite (v[0]) && std::isfinite (v[1]) && std::isfinite (v[2])))
+        continue;
+      for (int d = 0; d < 3; ++d)
+        if (f.field_[d].datatype == pcl::PCLPointField::FLOAT64)
+        {
+          low[d] = std::min (low[d], v[d]);
+          high[d] = std::max (high[d], v[d]);
+        }
+    }
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    const double centre = low[d] <= high[d] ? 0.5 * low[d] + 0.5 * high[d] : 0.0;
+    for (XyzFields &f : fields)
+      f.origin_[d] = centre;
+  }
+}
+
+void
+XyzFields::centreOn (const pcl::PCLPointCloud2 &cloud)
+{
+  std::vector<XyzFields> one{*this};
+  setCommonOrigin (one, {&cloud});
+  *this = one.front ();
 }
 
 void

@@ -9,6 +9,7 @@
 #include <pcl/point_types.h>
 
 #include <string>
+#include <vector>
 
 namespace pcl_graph_denoise {
 namespace tools {
@@ -22,14 +23,15 @@ public:
    *  \throws Error (naming `source`) if one is missing or is not a single float or double. */
   XyzFields (const pcl::PCLPointCloud2 &cloud, const std::string &source);
 
-  /** \brief The positions as floats, with the cloud's width, height and density. */
+  /** \brief The positions as floats, less the origin (setCommonOrigin), with the cloud's
+   *  width, height and density. */
   pcl::PointCloud<pcl::PointXYZ>::Ptr
   extract (const pcl::PCLPointCloud2 &cloud) const;
 
   /** \brief Moves the points of `cloud` where `after` differs from `before` (both from
-   *  extract() and the filter): a float field receives the new value, a double field its
-   *  value plus the displacement, so that a point that did not move keeps its exact
-   *  bytes. Returns the number of points moved. */
+   *  extract() and the filter): a float field receives the new value plus the origin, a
+   *  double field its value plus the displacement, so that a point that did not move
+   *  keeps its exact bytes. Returns the number of points moved. */
   std::size_t
   writeBack (pcl::PCLPointCloud2 &cloud, const pcl::PointCloud<pcl::PointXYZ> &before,
              const pcl::PointCloud<pcl::PointXYZ> &after) const;
@@ -38,14 +40,36 @@ public:
   void
   setNaN (pcl::PCLPointCloud2 &cloud, std::size_t index) const;
 
+  /** \brief Takes the origin from `cloud` alone (setCommonOrigin with one cloud). */
+  void
+  centreOn (const pcl::PCLPointCloud2 &cloud);
+
+  /** \brief What extract() subtracts from the coordinates (in double, before they
+   *  become floats) and writeBack() adds back. */
+  const double *
+  origin () const { return origin_; }
+
 private:
+  friend void
+  setCommonOrigin (std::vector<XyzFields> &fields, const std::vector<const pcl::PCLPointCloud2 *> &clouds);
+
   struct Field
   {
     std::uint32_t offset;
     std::uint8_t datatype;
   };
   Field field_[3];
+  double origin_[3] = {0.0, 0.0, 0.0};
 };
+
+/** \brief Gives every cloud's fields the same origin: the centre of the bounding box of
+ *  the finite points' double coordinates, per axis (0 on an axis stored as float in every
+ *  cloud). Geo-referenced coordinates (UTM: millions of metres) stored as doubles keep
+ *  their precision through the filters, which work in float: at 4,000,000 m a float
+ *  steps by 0.25 m. One origin for all, so that the frames of a sequence stay in one
+ *  frame of reference. */
+void
+setCommonOrigin (std::vector<XyzFields> &fields, const std::vector<const pcl::PCLPointCloud2 *> &clouds);
 
 /** \brief The number of points with finite x, y and z. */
 std::size_t

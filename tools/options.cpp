@@ -508,6 +508,9 @@ parseCommandLine (int argc, const char *const *argv)
     if (options.removed == options.output ||
         resolved (options.removed) == resolved (options.output))
       throw UsageError ("-removed names the output file");
+    // The input would be replaced by its outliers alone.
+    if (options.removed == options.input || resolved (options.removed) == resolved (options.input))
+      throw UsageError ("-removed names the input file: it would be replaced by the removed points");
   }
   return options;
 }

@@ -26,6 +26,7 @@
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -512,6 +513,21 @@ run (const Options &options)
     info (" with a finite x, y, z]\n  Available dimensions: ");
     value ("%s\n", pcl::getFieldsList (cloud).c_str ());
   }
+
+  // Double coordinates about an origin (geo-referenced clouds): one for all the frames
+  // of a sequence, one per file otherwise.
+  const bool temporal = std::any_of (options.steps.begin (), options.steps.end (),
+                                     [] (const Step &step) { return step.kind == StepKind::TEMPORAL; });
+  if (temporal)
+  {
+    std::vector<const pcl::PCLPointCloud2 *> clouds;
+    for (const auto &file : files)
+      clouds.push_back (&file.cloud);
+    setCommonOrigin (xyz, clouds);
+  }
+  else
+    for (std::size_t f = 0; f < files.size (); ++f)
+      xyz[f].centreOn (files[f].cloud);
 
   pcl::PCLPointCloud2 removed;
   for (std::size_t s = 0; s < options.steps.size (); ++s)

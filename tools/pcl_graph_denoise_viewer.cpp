@@ -227,13 +227,28 @@ parseViewerArguments (int argc, char **argv)
   return options;
 }
 
-/** The positions of a .pcd or .ply file with any fields (x, y, z float or double), in
- *  the file's order, non-finite points included. */
-Cloud::Ptr
-loadPositions (const std::string &path)
+/** The positions of .pcd or .ply files with any fields (x, y, z float or double), in
+ *  each file's order, non-finite points included; double coordinates about one origin
+ *  (setCommonOrigin), so that geo-referenced clouds keep their precision and stay
+ *  comparable. */
+std::vector<Cloud::Ptr>
+loadPositions (const std::vector<std::string> &paths)
 {
-  const CloudFile file = loadCloud (path);
-  return XyzFields (file.cloud, path).extract (file.cloud);
+  std::vector<CloudFile> files;
+  std::vector<XyzFields> fields;
+  std::vector<const pcl::PCLPointCloud2 *> clouds;
+  for (const std::string &path : paths)
+  {
+    files.push_back (loadCloud (path));
+    fields.emplace_back (files.back ().cloud, path);
+  }
+  for (const CloudFile &file : files)
+    clouds.push_back (&file.cloud);
+  setCommonOrigin (fields, clouds);
+  std::vector<Cloud::Ptr> out;
+  for (std::size_t f = 0; f < files.size (); ++f)
+    out.push_back (fields[f].extract (files[f].cloud));
+  return out;
 }
 
 bool
@@ -330,8 +345,9 @@ run (const ViewerOptions &options)
   const bool headless = !options.png.empty ();
   if (headless)
     checkPngWritable (options.png);
-  const Cloud::Ptr input = loadPositions (options.input);
-  const Cloud::Ptr result = loadPositions (options.result);
+  const std::vector<Cloud::Ptr> loaded = loadPositions ({options.input, options.result});
+  const Cloud::Ptr input = loaded[0];
+  const Cloud::Ptr result = loaded[1];
   const DisplayConnection display;  // fails early without one; outlives the window
 
   // Scalars on every point of each file, then the finite points with theirs.

@@ -591,7 +591,8 @@ private:
     checkLayout (msg);
     pcl::PCLPointCloud2 cloud;
     pcl_conversions::toPCL (msg, cloud);
-    const XyzFields xyz (cloud, "input cloud");
+    XyzFields xyz (cloud, "input cloud");
+    xyz.centreOn (cloud);  // geo-referenced double coordinates keep their precision
     if (countFinite (*xyz.extract (cloud)) == 0)
       throw CloudError ("no point has a finite x, y, z");
 
