@@ -646,6 +646,39 @@ TEST (OutlierRemovalBadInput, HeavilyDuplicatedCloudIsMeasuredOnItsDistinctPosit
   EXPECT_NEAR (filter.getUsedRadius (), single.getUsedRadius (), 1e-6 * single.getUsedRadius ());
 }
 
+TEST (OutlierRemovalBadInput, AStackOfCopiesChangesNothingElse)
+{
+  // A sphere 2 units from the origin and, as some drivers store invalid returns, up to
+  // twice as many copies of (0, 0, 0). The copies make no surface denser: the radius and
+  // the sphere's points kept are those of the sphere alone (the stack lowered the
+  // median spacing: with 4,900 copies the radius fell from 0.185 to 0.114 and 63 sphere
+  // points went), and the stack, each copy with the others as neighbours, is kept as
+  // RadiusOutlierRemoval keeps it. Each position is searched once: 10,000 copies were
+  // 10,000 searches listing 9,999 copies each.
+  auto sphere = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> (
+      pcl_graph_denoise::synthetic::noisySphere (5000, 1.0, 0.005, 9));
+  for (auto &p : *sphere)
+    p.z += 2.0f;
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> alone;
+  alone.setInputCloud (sphere);
+  pcl::Indices kept_alone;
+  alone.filter (kept_alone);
+  for (const int copies : {4900, 10000})
+  {
+    auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> (*sphere);
+    cloud->resize (sphere->size () + copies, pcl::PointXYZ (0.0f, 0.0f, 0.0f));
+    GraphDegreeOutlierRemoval<pcl::PointXYZ> filter;
+    filter.setInputCloud (cloud);
+    pcl::Indices kept;
+    filter.filter (kept);
+    EXPECT_NEAR (filter.getUsedRadius (), alone.getUsedRadius (), 1e-6 * alone.getUsedRadius ())
+        << copies << " copies";
+    const auto sphere_end = std::lower_bound (kept.begin (), kept.end (), int (sphere->size ()));
+    EXPECT_LE (kept_alone.size () - std::size_t (sphere_end - kept.begin ()), 5u) << copies << " copies";
+    EXPECT_EQ (std::size_t (kept.end () - sphere_end), std::size_t (copies)) << copies << " copies";
+  }
+}
+
 TEST (OutlierRemovalBadInput, InvalidParametersAreNamed)
 {
   auto cloud = sphereWithOutliers<pcl::PointXYZ> ();

@@ -77,7 +77,8 @@ public:
   /** \brief Radius epsilon of the graph, in the cloud's units: points closer than
    *  epsilon are linked. Default 0 = derived from the data: 3 x the spacing, the median
    *  over the points of their mean distance to their 10 nearest neighbours (over the
-   *  distinct positions when that median is 0: most points have 10 or more exact copies).
+   *  distinct positions when there are exact copies: they do not make the surface
+   *  denser).
    *  Valid: >= 0. */
   inline void
   setRadiusSearch (double epsilon) { radius_ = epsilon; }

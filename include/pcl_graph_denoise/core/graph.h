@@ -101,8 +101,8 @@ struct RadiusGraphParams
   /** Radius epsilon in the points' units. 0 (default) derives it from the data:
    *  epsilon = radius_factor * spacing, with spacing the median over the points of
    *  their mean distance to their `spacing_k` nearest neighbours (the median keeps
-   *  far outliers from inflating it), taken over the distinct positions when it is 0 (at
-   *  least half the points have spacing_k exact copies). Valid: >= 0, finite. */
+   *  far outliers from inflating it), taken over the distinct positions when there are
+   *  exact copies (they do not make the surface denser). Valid: >= 0, finite. */
   double radius = 0.0;
   /** Kernel width theta; 0 (default) = sigma_factor * spacing. Valid: >= 0, finite. */
   double sigma = 0.0;
