@@ -142,50 +142,70 @@ XyzFields::writeBack (pcl::PCLPointCloud2 &cloud, const pcl::PointCloud<pcl::Poi
 }
 
 void
-setCommonOrigin (std::vector<XyzFields> &fields, const std::vector<const pcl::PCLPointCloud2 *> &clouds)
+XyzFields::extendBounds (const pcl::PCLPointCloud2 &cloud, double low[3], double high[3]) const
 {
-  if (fields.size () != clouds.size ())
-    throw std::invalid_argument ("setCommonOrigin: one cloud per set of fields");
-  double low[3], high[3];
+  const std::size_t n = std::size_t (cloud.width) * cloud.height;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::uint8_t *p = pointData (cloud, i);
+    double v[3];
+    for (int d = 0; d < 3; ++d)
+      v[d] = readCoordinate (p + field_[d].offset, field_[d].datatype);
+    if (!(std::isfinite (v[0]) && std::isfinite (v[1]) && std::isfinite (v[2])))
+      continue;
+    for (int d = 0; d < 3; ++d)
+      if (field_[d].datatype == pcl::PCLPointField::FLOAT64)
+      {
+        low[d] = std::min (low[d], v[d]);
+        high[d] = std::max (high[d], v[d]);
+      }
+  }
+}
+
+namespace {
+
+/** Empty bounds, for extendBounds. */
+void
+emptyBounds (double low[3], double high[3])
+{
   for (int d = 0; d < 3; ++d)
   {
     low[d] = std::numeric_limits<double>::infinity ();
     high[d] = -std::numeric_limits<double>::infinity ();
   }
+}
+
+/** The centre of [low, high] on an axis, 0 where it is empty (no double coordinate). */
+double
+centre (double low, double high)
+{
+  return low <= high ? 0.5 * low + 0.5 * high : 0.0;
+}
+
+}  // namespace
+
+void
+setCommonOrigin (std::vector<XyzFields> &fields, const std::vector<const pcl::PCLPointCloud2 *> &clouds)
+{
+  if (fields.size () != clouds.size ())
+    throw std::invalid_argument ("setCommonOrigin: one cloud per set of fields");
+  double low[3], high[3];
+  emptyBounds (low, high);
   for (std::size_t c = 0; c < clouds.size (); ++c)
-  {
-    const XyzFields &f = fields[c];
-    const std::size_t n = std::size_t (clouds[c]->width) * clouds[c]->height;
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const std::uint8_t *p = pointData (*clouds[c], i);
-      double v[3];
-      for (int d = 0; d < 3; ++d)
-        v[d] = readCoordinate (p + f.field_[d].offset, f.field_[d].datatype);
-      if (!(std::isfinite (v[0]) && std::isfinite (v[1]) && std::isfinite (v[2])))
-        continue;
-      for (int d = 0; d < 3; ++d)
-        if (f.field_[d].datatype == pcl::PCLPointField::FLOAT64)
-        {
-          low[d] = std::min (low[d], v[d]);
-          high[d] = std::max (high[d], v[d]);
-        }
-    }
-  }
-  for (int d = 0; d < 3; ++d)
-  {
-    const double centre = low[d] <= high[d] ? 0.5 * low[d] + 0.5 * high[d] : 0.0;
-    for (XyzFields &f : fields)
-      f.origin_[d] = centre;
-  }
+    fields[c].extendBounds (*clouds[c], low, high);
+  for (XyzFields &f : fields)
+    for (int d = 0; d < 3; ++d)
+      f.origin_[d] = centre (low[d], high[d]);
 }
 
 void
 XyzFields::centreOn (const pcl::PCLPointCloud2 &cloud)
 {
-  std::vector<XyzFields> one{*this};
-  setCommonOrigin (one, {&cloud});
-  *this = one.front ();
+  double low[3], high[3];
+  emptyBounds (low, high);
+  extendBounds (cloud, low, high);
+  for (int d = 0; d < 3; ++d)
+    origin_[d] = centre (low[d], high[d]);
 }
 
 void

@@ -44,11 +44,6 @@ public:
   void
   centreOn (const pcl::PCLPointCloud2 &cloud);
 
-  /** \brief What extract() subtracts from the coordinates (in double, before they
-   *  become floats) and writeBack() adds back. */
-  const double *
-  origin () const { return origin_; }
-
 private:
   friend void
   setCommonOrigin (std::vector<XyzFields> &fields, const std::vector<const pcl::PCLPointCloud2 *> &clouds);
@@ -58,7 +53,13 @@ private:
     std::uint32_t offset;
     std::uint8_t datatype;
   };
+  /** Widens [low, high] per axis by the finite points' double coordinates. */
+  void
+  extendBounds (const pcl::PCLPointCloud2 &cloud, double low[3], double high[3]) const;
+
   Field field_[3];
+  /** What extract() subtracts from the coordinates (in double, before they become
+   *  floats) and writeBack() adds back. */
   double origin_[3] = {0.0, 0.0, 0.0};
 };
 

@@ -588,9 +588,11 @@ struct RadiusSearch
   std::vector<VertexIndex> queries;
   std::size_t num_queries = 0;  // rows that are queries
   /** Exact copies (graph order): the vertices at one position have the same
-   *  neighbours; the first query at each is searched, the others take its results. */
-  DistinctPoints distinct;
-  std::vector<VertexIndex> first_query;  ///< per distinct position; empty without copies
+   *  neighbours; the first query at each is searched, the others take its results.
+   *  Empty without copies. */
+  std::vector<VertexIndex> position_of;  ///< per vertex, its distinct position
+  std::vector<VertexIndex> first_query;  ///< per distinct position (none: kNoVertex)
+  std::vector<VertexIndex> firsts;       ///< the first queries, ascending
 
   bool
   isQuery (std::size_t vertex) const { return graph.order[vertex] < num_queries; }
@@ -599,24 +601,25 @@ struct RadiusSearch
   bool
   copied (std::size_t vertex) const
   {
-    return !first_query.empty () && first_query[distinct.of_row[vertex]] != vertex;
+    return !first_query.empty () && first_query[position_of[vertex]] != vertex;
   }
+
+  /** The first query at a copied vertex's position. */
+  VertexIndex
+  firstCopy (std::size_t vertex) const { return first_query[position_of[vertex]]; }
 };
 
-/** The spacing of the distinct positions among the queries, when there are exact copies:
- *  the copies do not make the surface denser (counted, a stack of copies at one position
- *  lowered the median, and when at least half of the points have spacing_k copies or more
- *  it is 0, and so would be epsilon and theta). 0 when there are fewer than two distinct
- *  positions. */
+/** The spacing of the distinct positions among the queries (search.firsts), when there
+ *  are exact copies: the copies do not make the surface denser (counted, a stack of
+ *  copies at one position lowered the median, and when at least half of the points have
+ *  spacing_k copies or more it is 0, and so would be epsilon and theta). 0 when there are
+ *  fewer than two distinct positions. */
 double
 distinctSpacing (const RadiusSearch &search, const RadiusGraphParams &params)
 {
-  PointMatrix queries (static_cast<Eigen::Index> (search.num_queries), 3);
-  for (std::size_t v = 0; v < search.graph.order.size (); ++v)
-    if (search.isQuery (v))
-      queries.row (search.graph.order[v]) = search.ordered.row (v);
-  const DistinctPoints distinct = distinctPoints (queries);
-  const PointMatrix &points = distinct.copies > 0 ? distinct.points : queries;
+  PointMatrix points (static_cast<Eigen::Index> (search.firsts.size ()), 3);
+  for (std::size_t r = 0; r < search.firsts.size (); ++r)
+    points.row (static_cast<Eigen::Index> (r)) = search.ordered.row (search.firsts[r]);
   const auto m = static_cast<std::size_t> (points.rows ());
   if (m < 2)
     return 0.0;
@@ -661,28 +664,31 @@ prepareRadiusSearch (const PointMatrix &points, const RadiusGraphParams &params,
   const int k = static_cast<int> (std::min<std::size_t> (params.spacing_k, n - 1));
   // Exact copies: one search per position (m copies of a driver's invalid (0, 0, 0)
   // would otherwise each scan the m - 1 others: 30,000 took 24 s).
-  search.distinct = distinctPoints (search.ordered);
-  std::vector<VertexIndex> firsts;
-  if (search.distinct.copies > 0)
   {
-    constexpr VertexIndex kNoVertex = std::numeric_limits<VertexIndex>::max ();
-    search.first_query.assign (static_cast<std::size_t> (search.distinct.points.rows ()), kNoVertex);
-    for (std::size_t v = 0; v < n; ++v)
-      if (search.isQuery (v) && search.first_query[search.distinct.of_row[v]] == kNoVertex)
-      {
-        search.first_query[search.distinct.of_row[v]] = static_cast<VertexIndex> (v);
-        firsts.push_back (static_cast<VertexIndex> (v));
-      }
+    DistinctPoints distinct = distinctPoints (search.ordered);
+    if (distinct.copies > 0)
+    {
+      constexpr VertexIndex kNoVertex = std::numeric_limits<VertexIndex>::max ();
+      search.position_of = std::move (distinct.of_row);
+      search.first_query.assign (static_cast<std::size_t> (distinct.points.rows ()), kNoVertex);
+      for (std::size_t v = 0; v < n; ++v)
+        if (search.isQuery (v) && search.first_query[search.position_of[v]] == kNoVertex)
+        {
+          search.first_query[search.position_of[v]] = static_cast<VertexIndex> (v);
+          search.firsts.push_back (static_cast<VertexIndex> (v));
+        }
+    }
   }
-  const std::vector<VertexIndex> *subset = search.distinct.copies > 0 ? &firsts
-                                           : search.queries.empty ()  ? nullptr
-                                                                      : &search.queries;
+  const bool copies = !search.firsts.empty ();
+  const std::vector<VertexIndex> *subset = copies                   ? &search.firsts
+                                           : search.queries.empty () ? nullptr
+                                                                     : &search.queries;
   search.mean_knn = meanKnnDistances (*search.tree, n, k, params.num_threads, subset);
-  if (search.distinct.copies > 0)
+  if (copies)
   {
     for (std::size_t v = 0; v < n; ++v)
       if (search.isQuery (v) && search.copied (v))
-        search.mean_knn[v] = search.mean_knn[search.first_query[search.distinct.of_row[v]]];
+        search.mean_knn[v] = search.mean_knn[search.firstCopy (v)];
     search.graph.spacing = distinctSpacing (search, params);
   }
   else
@@ -974,7 +980,7 @@ radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params)
     for (std::size_t v = 0; v < n; ++v)
       if (search.isQuery (v) && search.copied (v))
       {
-        const VertexIndex first = search.first_query[search.distinct.of_row[v]];
+        const VertexIndex first = search.firstCopy (v);
         out.degree[search.graph.order[v]] = out.degree[search.graph.order[first]];
         if (residuals)
           planes[v] = planes[first];
