@@ -14,6 +14,7 @@
 #include <pcl_graph_denoise/graph_tv_smoothing.h>
 
 #include "synthetic.h"
+#include "test_clouds.h"
 
 #include <gtest/gtest.h>
 
@@ -416,7 +417,7 @@ lines (const std::string &text)
 /** Every option of the tool (steps, step parameters, the others). */
 const char *const every_option =
     "-outliers -tikhonov -tv -radius -sigma -threshold_ratio -degree_threshold -outlier_fraction "
-    "-keep_organized -threads -k -gamma -graph_iterations -normal_displacement -local_surface "
+    "-keep_sparse_surfaces -keep_organized -threads -k -gamma -graph_iterations -normal_displacement -local_surface "
     "-adaptive_support -patch_cover -shrinkage_correction -tolerance -max_iterations -solver -norm -memory_limit -removed -ascii -q "
     "-temporal -smoother -k2 -window -motion_compensation";
 
@@ -813,6 +814,42 @@ TEST (Cli, ResidualThresholdReachesTheFilter)
   EXPECT_EQ (size (load (dir / "out.pcd")), size (input));
   EXPECT_EQ (off.err.find ("residual test"), std::string::npos) << off.err;
   EXPECT_EQ (runTool (dir, {"in.pcd", "out.pcd", "-outliers", "-residual_threshold", "-1"}).code, 2);
+}
+
+TEST (Cli, KeepSparseSurfacesReachesTheFilter)
+{
+  const fs::path dir = testFolder ();
+  std::vector<pcl_graph_denoise::testing::FloorPart> parts;
+  const auto floor = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> (
+      pcl_graph_denoise::testing::recedingFloor (300, 4, parts));
+  PCLPointCloud2 input;
+  pcl::toPCLPointCloud2 (*floor, input);
+  savePcd (dir / "in.pcd", input);
+  pcl_graph_denoise::GraphDegreeOutlierRemoval<pcl::PointXYZ> filter;
+  filter.setInputCloud (floor);
+  for (const bool keep : {true, false})
+  {
+    filter.setKeepSparseSurfaces (keep);
+    pcl::Indices kept;
+    filter.filter (kept);
+    const std::string value = keep ? "1" : "0";
+    for (const std::vector<std::string> &step :
+         {std::vector<std::string>{"-outliers", "-keep_sparse_surfaces", value},
+          {"-outliers", "keep_sparse_surfaces=" + value}})
+    {
+      std::vector<std::string> args = {"in.pcd", "out.pcd"};
+      args.insert (args.end (), step.begin (), step.end ());
+      const ToolRun run = runTool (dir, args);
+      ASSERT_EQ (run.code, 0) << describe (args, run);
+      EXPECT_EQ (size (load (dir / "out.pcd")), kept.size ()) << value;
+    }
+  }
+  // The default keeps them, and far more points than without.
+  ASSERT_EQ (runTool (dir, {"in.pcd", "out.pcd", "-outliers"}).code, 0);
+  const std::size_t with = size (load (dir / "out.pcd"));
+  ASSERT_EQ (runTool (dir, {"in.pcd", "out.pcd", "-outliers", "-keep_sparse_surfaces", "0"}).code, 0);
+  EXPECT_GT (with, size (load (dir / "out.pcd")) + 100);
+  EXPECT_EQ (runTool (dir, {"in.pcd", "out.pcd", "-outliers", "-keep_sparse_surfaces", "2"}).code, 2);
 }
 
 TEST (Cli, OutliersOnAnOrganisedCloud)

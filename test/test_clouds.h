@@ -14,7 +14,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <random>
 #include <string>
+#include <vector>
 
 namespace pcl_graph_denoise {
 namespace testing {
@@ -86,6 +88,44 @@ underCI ()
 {
   const char *ci = std::getenv ("CI");
   return ci && std::string (ci) == "true";
+}
+
+/** What recedingFloor's points are. */
+enum class FloorPart : unsigned char
+{
+  NEAR,     ///< the floor within 5 units of the scanner
+  FAR,      ///< the floor beyond 5 units, up to 11 times as sparse as the nearest
+  OUTLIER,  ///< uniform in the box above it
+};
+
+/** A floor as a scanner sees it: the plane z = 0 over x in [0, 10], y in [0, 1], whose
+ *  spacing grows with x from 0.01 to 0.11 (a scanner's grows with the range), points
+ *  jittered by a quarter of it and with a normal noise of 2% of it; then `outliers`
+ *  points uniform in [0, 10] x [0, 1] x [0.5, 3]. `parts` receives what each point is. */
+inline pcl::PointCloud<pcl::PointXYZ>
+recedingFloor (std::size_t outliers, unsigned seed, std::vector<FloorPart> &parts)
+{
+  std::mt19937 rng (seed);
+  std::uniform_real_distribution<float> jitter (-0.25f, 0.25f);
+  std::normal_distribution<float> noise (0.0f, 0.02f);
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  parts.clear ();
+  for (float x = 0.0f; x <= 10.0f; x += 0.01f * (1.0f + x))
+  {
+    const float h = 0.01f * (1.0f + x);
+    for (float y = 0.0f; y < 1.0f; y += h)
+    {
+      cloud.push_back (pcl::PointXYZ (x + h * jitter (rng), y + h * jitter (rng), h * noise (rng)));
+      parts.push_back (x > 5.0f ? FloorPart::FAR : FloorPart::NEAR);
+    }
+  }
+  std::uniform_real_distribution<float> u (0.0f, 1.0f);
+  for (std::size_t i = 0; i < outliers; ++i)
+  {
+    cloud.push_back (pcl::PointXYZ (10.0f * u (rng), u (rng), 0.5f + 2.5f * u (rng)));
+    parts.push_back (FloorPart::OUTLIER);
+  }
+  return cloud;
 }
 
 } // namespace testing

@@ -9,6 +9,7 @@
 #include <pcl_graph_denoise/core/operators.h>
 
 #include "synthetic.h"
+#include "test_clouds.h"
 
 #include <gtest/gtest.h>
 
@@ -789,6 +790,98 @@ TEST (RadiusGraph, NormalResidualFlagsPointsOffTheSurfaceOnly)
   // Nor do the degrees on the test.
   params.residual_multiplier = 0.0;
   EXPECT_EQ (radiusGraphDegrees (p, params).degree, d.degree);
+}
+
+TEST (RadiusGraph, AutomaticDegreeThresholdIsARatioOfTheFirstQuartile)
+{
+  const std::vector<double> degrees = {4, 1, 3, 2, 8, 6, 7, 5};  // first quartile: 3
+  EXPECT_DOUBLE_EQ (automaticDegreeThreshold (degrees, 0.5).threshold, 1.5);
+  EXPECT_EQ (automaticDegreeThreshold (degrees, 0.5).without_neighbour, 0u);
+  // More than a quarter without a neighbour: the others' quartile (of 4, 5, 6, 7, 8: 5).
+  const std::vector<double> isolated = {0, 0, 0, 4, 8, 6, 7, 5};
+  EXPECT_DOUBLE_EQ (automaticDegreeThreshold (isolated, 0.5).threshold, 2.5);
+  EXPECT_EQ (automaticDegreeThreshold (isolated, 0.5).without_neighbour, 3u);
+  EXPECT_DOUBLE_EQ (automaticDegreeThreshold (isolated, 0.0).threshold, 0.0);
+  EXPECT_DOUBLE_EQ (automaticDegreeThreshold ({}, 0.5).threshold, 0.0);
+  EXPECT_DOUBLE_EQ (automaticDegreeThreshold ({0, 0}, 0.5).threshold, 0.0);
+  EXPECT_THROW (automaticDegreeThreshold (degrees, -1.0), std::invalid_argument);
+  EXPECT_THROW (automaticDegreeThreshold (degrees, std::nan ("")), std::invalid_argument);
+  RadiusGraphParams bad;
+  bad.sparse_surface_ratio = -0.2;
+  EXPECT_THROW (radiusGraphDegrees (noisySquare (100, 0.0f, 1), bad), std::invalid_argument);
+}
+
+TEST (RadiusGraph, SparseSurfaceContinuesARecedingFloorOnly)
+{
+  using pcl_graph_denoise::testing::FloorPart;
+  std::vector<FloorPart> parts;
+  const auto cloud = pcl_graph_denoise::testing::recedingFloor (300, 5, parts);
+  PointMatrix p = synthetic::toMatrix (cloud);
+  // A patch as sparse as the far floor but apart from it (5 units above its near end),
+  // whose density does not continue the floor's: not reached.
+  const Eigen::Index patch = p.rows ();
+  p.conservativeResize (p.rows () + 100, 3);
+  for (int i = 0; i < 100; ++i)
+    p.row (patch + i) << 0.1f * float (i % 10), 0.1f * float (i / 10), 5.0f;
+  RadiusGraphParams params;
+  params.sparse_surface_ratio = 0.2;
+  const RadiusDegrees d = radiusGraphDegrees (p, params);
+  ASSERT_EQ (d.sparse_surface.size (), std::size_t (p.rows ()));
+  const double threshold = automaticDegreeThreshold (d.degree, 0.2).threshold;
+  std::size_t far = 0, far_low = 0, far_kept = 0, outliers_flagged = 0, near_flagged = 0;
+  for (Eigen::Index i = 0; i < patch; ++i)
+  {
+    const bool low = d.degree[i] < threshold;
+    switch (parts[i])
+    {
+    case FloorPart::FAR:
+      ++far;
+      far_low += low;
+      far_kept += !low || d.sparse_surface[i];
+      break;
+    case FloorPart::OUTLIER:
+      outliers_flagged += d.sparse_surface[i];
+      break;
+    case FloorPart::NEAR:
+      near_flagged += d.sparse_surface[i] && !low;
+      break;
+    }
+  }
+  // The degree test alone loses most of the far floor; the growth keeps nearly all of it.
+  EXPECT_GT (far_low, far / 2) << far;
+  EXPECT_GE (far_kept, far - far / 50) << far_low;
+  EXPECT_EQ (outliers_flagged, 0u);
+  EXPECT_EQ (near_flagged, 0u);  // only points below the threshold are flagged
+  for (Eigen::Index i = patch; i < p.rows (); ++i)
+    EXPECT_FALSE (d.sparse_surface[i]) << "patch point " << i - patch;
+  // The flags do not depend on the number of threads, nor on the row order.
+  params.num_threads = 1;
+  EXPECT_EQ (radiusGraphDegrees (p, params).sparse_surface, d.sparse_surface);
+  PointMatrix reversed = p.colwise ().reverse ();
+  const RadiusDegrees r = radiusGraphDegrees (reversed, params);
+  for (Eigen::Index i = 0; i < p.rows (); ++i)
+    ASSERT_EQ (r.sparse_surface[p.rows () - 1 - i], d.sparse_surface[i]) << i;
+  // Each point sampled twice (a scan that repeats itself): the copies count once, and
+  // every copy gets its position's flag.
+  PointMatrix doubled (2 * p.rows (), 3);
+  doubled << p, p;
+  const RadiusDegrees twice = radiusGraphDegrees (doubled, params);
+  const double twice_threshold = automaticDegreeThreshold (twice.degree, 0.2).threshold;
+  std::size_t twice_far_kept = 0;
+  for (Eigen::Index i = 0; i < p.rows (); ++i)
+  {
+    ASSERT_EQ (twice.sparse_surface[i], twice.sparse_surface[p.rows () + i]) << i;
+    if (i < patch && parts[i] == FloorPart::FAR)
+      twice_far_kept += twice.degree[i] >= twice_threshold || twice.sparse_surface[i];
+    if (i >= patch || parts[i] == FloorPart::OUTLIER)
+      ASSERT_FALSE (twice.sparse_surface[i]) << i;
+  }
+  EXPECT_GE (twice_far_kept, far - far / 50);
+  // Off (the default): no flags, and the degrees are the same.
+  params.sparse_surface_ratio = 0.0;
+  const RadiusDegrees off = radiusGraphDegrees (p, params);
+  EXPECT_TRUE (off.sparse_surface.empty ());
+  EXPECT_EQ (off.degree, d.degree);
 }
 
 TEST (RadiusGraph, NormalResidualIsNotMaskedByAFewOutliersNearby)

@@ -19,6 +19,7 @@
 #include <pcl/filters/radius_outlier_removal.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -361,6 +362,51 @@ TEST (OutlierRemoval, AutomaticThresholdWithMoreThanAQuarterIsolated)
   filter.filter (kept);
   EXPECT_EQ (::testing::internal::GetCapturedStderr (), "");
   EXPECT_EQ (kept.size (), cloud->size ());
+}
+
+TEST (OutlierRemoval, KeepsAFloorThatRecedesFromTheScanner)
+{
+  // A scanner's floor grows sparser with the range, up to 11 times: the degree test alone
+  // removes most of its far half; by default the filter keeps it, and the outliers above
+  // still go.
+  std::vector<FloorPart> parts;
+  const auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> (recedingFloor (300, 9, parts));
+  const auto tally = [&] (const pcl::Indices &kept) {
+    std::array<std::size_t, 3> count = {0, 0, 0};
+    for (const auto i : kept)
+      ++count[static_cast<std::size_t> (parts[i])];
+    return count;
+  };
+  std::array<std::size_t, 3> total = {0, 0, 0};
+  for (const FloorPart part : parts)
+    ++total[static_cast<std::size_t> (part)];
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter (true);
+  EXPECT_TRUE (filter.getKeepSparseSurfaces ());
+  filter.setInputCloud (cloud);
+  pcl::Indices kept;
+  filter.filter (kept);
+  const auto with = tally (kept);
+  const std::size_t far = total[1];
+  EXPECT_GE (with[0], total[0] - total[0] / 100);
+  EXPECT_GE (with[1], far - far / 50);
+  EXPECT_EQ (with[2], 0u);
+  const double threshold = filter.getUsedDegreeThreshold ();
+
+  filter.setKeepSparseSurfaces (false);
+  EXPECT_FALSE (filter.getKeepSparseSurfaces ());
+  filter.filter (kept);
+  const auto without = tally (kept);
+  EXPECT_LT (without[1], far / 2);
+  EXPECT_EQ (without[2], 0u);
+  EXPECT_EQ (filter.getUsedDegreeThreshold (), threshold);
+
+  // The caller's own threshold is applied as it is: the same threshold as an absolute
+  // one removes what the automatic rule without the growth removes.
+  filter.setKeepSparseSurfaces (true);
+  filter.setDegreeThreshold (threshold);
+  pcl::Indices absolute;
+  filter.filter (absolute);
+  EXPECT_EQ (absolute, kept);
 }
 
 TEST (OutlierRemoval, OutlierFractionRemovesThatManyLowestDegreePoints)

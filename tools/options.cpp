@@ -69,6 +69,7 @@ const ParameterSpec parameter_specs[] = {
     {"degree_threshold", OUTLIERS_STEP, ValueType::NON_NEGATIVE},
     {"outlier_fraction", OUTLIERS_STEP, ValueType::FRACTION},
     {"residual_threshold", OUTLIERS_STEP, ValueType::NON_NEGATIVE},
+    {"keep_sparse_surfaces", OUTLIERS_STEP, ValueType::SWITCH},
     {"keep_organized", OUTLIERS_STEP, ValueType::SWITCH},
     {"sigma", ALL_STEPS, ValueType::NON_NEGATIVE},
     {"k", SMOOTHING_STEPS, ValueType::AT_LEAST_ONE},
@@ -618,6 +619,10 @@ usage (const std::string &program)
     << "  -residual_threshold X   also remove points off their neighbours' plane by more than\n"
     << "                          X x the noise; 0 = off (the paper's filter); >= 0; not with\n"
     << "                          -outlier_fraction (default: " << residual << ")\n"
+    << "  -keep_sparse_surfaces 0|1  with -threshold_ratio, 1 keeps the low-degree points on a\n"
+    << "                          surface sampled more sparsely than the rest (a far wall);\n"
+    << "                          isolated and off-surface points still go (default: "
+    << (outliers.getKeepSparseSurfaces () ? 1 : 0) << ")\n"
     << "  -keep_organized 0|1     1: removed points stay, with x, y, z set to NaN, so that\n"
     << "                          width x height survive (default: 0, they are dropped)\n"
     << "  -threads N              worker threads (default: " << outlier_threads << ")\n"

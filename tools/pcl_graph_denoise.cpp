@@ -163,6 +163,8 @@ configure (pcl_graph_denoise::GraphDegreeOutlierRemoval<pcl::PointXYZ> &filter, 
       filter.setOutlierFraction (v.number);
     else if (name == "residual_threshold")
       filter.setResidualThreshold (v.number);
+    else if (name == "keep_sparse_surfaces")
+      filter.setKeepSparseSurfaces (v.number != 0.0);
     else if (name == "threads")
       filter.setNumberOfThreads (static_cast<int> (v.number));
     else if (name == "memory_limit")

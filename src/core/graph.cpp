@@ -609,25 +609,24 @@ struct RadiusSearch
   firstCopy (std::size_t vertex) const { return first_query[position_of[vertex]]; }
 };
 
-/** The spacing of the distinct positions among the queries (search.firsts), when there
- *  are exact copies: the copies do not make the surface denser (counted, a stack of
- *  copies at one position lowered the median, and when at least half of the points have
- *  spacing_k copies or more it is 0, and so would be epsilon and theta). 0 when there are
+/** The mean distance of each distinct position among the queries (search.firsts) to
+ *  its spacing_k nearest others, in the order of search.firsts, when there are exact
+ *  copies: the copies do not make the surface denser (counted, a stack of copies at one
+ *  position lowered the spacing, and when at least half of the points have spacing_k
+ *  copies or more it was 0, and so would be epsilon and theta). Zeros when there are
  *  fewer than two distinct positions. */
-double
-distinctSpacing (const RadiusSearch &search, const RadiusGraphParams &params)
+std::vector<double>
+distinctMeanKnn (const RadiusSearch &search, const RadiusGraphParams &params)
 {
   PointMatrix points (static_cast<Eigen::Index> (search.firsts.size ()), 3);
   for (std::size_t r = 0; r < search.firsts.size (); ++r)
     points.row (static_cast<Eigen::Index> (r)) = search.ordered.row (search.firsts[r]);
   const auto m = static_cast<std::size_t> (points.rows ());
   if (m < 2)
-    return 0.0;
+    return std::vector<double> (m, 0.0);
   const detail::KdTree tree (points);
   const int k = static_cast<int> (std::min<std::size_t> (params.spacing_k, m - 1));
-  std::vector<double> mean = meanKnnDistances (tree, m, k, params.num_threads);
-  std::nth_element (mean.begin (), mean.begin () + m / 2, mean.end ());
-  return mean[m / 2];
+  return meanKnnDistances (tree, m, k, params.num_threads);
 }
 
 /** The search of an epsilon-radius graph; `queries` false: every row is a query (the
@@ -680,29 +679,31 @@ prepareRadiusSearch (const PointMatrix &points, const RadiusGraphParams &params,
     }
   }
   const bool copies = !search.firsts.empty ();
-  const std::vector<VertexIndex> *subset = copies                   ? &search.firsts
-                                           : search.queries.empty () ? nullptr
-                                                                     : &search.queries;
-  search.mean_knn = meanKnnDistances (*search.tree, n, k, params.num_threads, subset);
+  const std::vector<VertexIndex> *subset = search.queries.empty () ? nullptr : &search.queries;
+  std::vector<double> mean;  // of the distinct query positions
   if (copies)
   {
+    // Among the distinct positions: a copy is no neighbour.
+    mean = distinctMeanKnn (search, params);
+    search.mean_knn.assign (n, 0.0);
+    for (std::size_t r = 0; r < search.firsts.size (); ++r)
+      search.mean_knn[search.firsts[r]] = mean[r];
     for (std::size_t v = 0; v < n; ++v)
       if (search.isQuery (v) && search.copied (v))
         search.mean_knn[v] = search.mean_knn[search.firstCopy (v)];
-    search.graph.spacing = distinctSpacing (search, params);
   }
   else
   {
-    std::vector<double> mean;
+    search.mean_knn = meanKnnDistances (*search.tree, n, k, params.num_threads, subset);
     if (subset)
       for (const VertexIndex v : search.queries)
         mean.push_back (search.mean_knn[v]);
     else
       mean = search.mean_knn;
-    auto middle = mean.begin () + mean.size () / 2;
-    std::nth_element (mean.begin (), middle, mean.end ());
-    search.graph.spacing = *middle;
   }
+  auto middle = mean.begin () + mean.size () / 2;
+  std::nth_element (mean.begin (), middle, mean.end ());
+  search.graph.spacing = *middle;
   search.graph.sigma =
       params.sigma > 0.0 ? params.sigma : params.sigma_factor * search.graph.spacing;
   if (params.radius == 0.0)
@@ -864,6 +865,192 @@ flagOffSurface (const RadiusSearch &search, const RadiusGraphParams &params,
   }
 }
 
+/** The sparse-surface test's limits (see RadiusDegrees::sparse_surface): the largest
+ *  ratio of a linked point's mean k-NN distance to its neighbour's, and the flatness and
+ *  offset of a point that passes the link on. */
+constexpr double kSparseSurfaceRatio = 1.25;
+constexpr double kSparseSurfaceFlatness = 0.4;
+constexpr double kSparseSurfaceOffset = 0.4;
+
+/** Whether `self` lies on the plane of `neighbours` (see RadiusDegrees::sparse_surface). */
+bool
+onNeighboursPlane (const PointMatrix &points, VertexIndex self,
+                   const std::vector<VertexIndex> &neighbours)
+{
+  if (neighbours.size () < 3)
+    return false;
+  const Eigen::Vector3d p = points.row (self).transpose ().cast<double> ();
+  Eigen::Vector3d first = Eigen::Vector3d::Zero ();
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero ();
+  for (const VertexIndex j : neighbours)
+  {
+    const Eigen::Vector3d q = points.row (j).transpose ().cast<double> () - p;
+    first += q;
+    second.noalias () += q * q.transpose ();
+  }
+  const double count = double (neighbours.size ());
+  const Eigen::Vector3d mean = first / count;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect (second / count - mean * mean.transpose ());
+  const double smallest = std::max (eig.eigenvalues ()(0), 0.0);
+  const double largest = eig.eigenvalues ()(2);
+  const double offset = eig.eigenvectors ().col (0).dot (mean);
+  return largest > 0.0 &&
+         smallest <= kSparseSurfaceFlatness * kSparseSurfaceFlatness * largest &&
+         offset * offset <= kSparseSurfaceOffset * kSparseSurfaceOffset * largest;
+}
+
+/** Most points a sparse-surface query looks through for its distinct neighbours (a
+ *  point beside a stack of copies finds fewer, and is judged on those). */
+constexpr std::size_t kMaxSparseSurfaceSearch = 4096;
+
+/** The nearest distinct positions of a vertex (see RadiusDegrees::sparse_surface). */
+class DistinctNeighbours
+{
+public:
+  DistinctNeighbours (const RadiusSearch &search, int k)
+      : search_ (search), k_ (static_cast<std::size_t> (k))
+  {
+  }
+
+  /** The k nearest distinct positions other than self's, one vertex for each, nearest
+   *  first (fewer when the cloud, or the kMaxSparseSurfaceSearch nearest points, hold
+   *  fewer). */
+  const std::vector<VertexIndex> &
+  operator() (VertexIndex self)
+  {
+    const std::size_t n = search_.graph.numVertices ();
+    const bool copies = !search_.position_of.empty ();
+    std::size_t wanted = std::min (n, k_ + 1);
+    for (;;)
+    {
+      found_.resize (wanted);
+      squared_.resize (wanted);
+      const std::size_t got = search_.tree->nearest (search_.ordered.row (self).data (),
+                                                     static_cast<int> (wanted), found_.data (),
+                                                     squared_.data ());
+      neighbors_.clear ();
+      for (std::size_t m = 0; m < got && neighbors_.size () < k_; ++m)
+      {
+        const VertexIndex j = found_[m];
+        if (j == self)
+          continue;
+        if (copies)
+        {
+          const VertexIndex position = search_.position_of[j];
+          if (position == search_.position_of[self] ||
+              std::any_of (neighbors_.begin (), neighbors_.end (), [&] (VertexIndex other) {
+                return search_.position_of[other] == position;
+              }))
+            continue;
+        }
+        neighbors_.push_back (j);
+      }
+      if (neighbors_.size () >= k_ || got < wanted || wanted >= kMaxSparseSurfaceSearch)
+        return neighbors_;
+      wanted = std::min ({n, 2 * wanted, kMaxSparseSurfaceSearch});
+    }
+  }
+
+private:
+  const RadiusSearch &search_;
+  const std::size_t k_;
+  std::vector<VertexIndex> neighbors_, found_;
+  std::vector<float> squared_;
+};
+
+/** The sparse-surface test of radiusGraphDegrees (see RadiusDegrees::sparse_surface),
+ *  once the degrees are known; `mean_knn` per vertex in graph order. */
+void
+flagSparseSurfaces (const RadiusSearch &search, const RadiusGraphParams &params,
+                    const std::vector<double> &mean_knn, RadiusDegrees &out)
+{
+  const std::size_t n = search.graph.numVertices ();
+  const double threshold =
+      automaticDegreeThreshold (out.degree, params.sparse_surface_ratio).threshold;
+  const auto degree = [&] (std::size_t v) { return out.degree[search.graph.order[v]]; };
+  // The points the growth may reach: the first query at each position below the
+  // threshold, or sparser than the cloud's typical point; the others it starts from.
+  const double dense = kSparseSurfaceRatio * search.graph.spacing;
+  constexpr VertexIndex kNone = std::numeric_limits<VertexIndex>::max ();
+  std::vector<VertexIndex> candidates, slot (n, kNone);
+  for (std::size_t v = 0; v < n; ++v)
+    if (search.isQuery (v) && !search.copied (v) && (degree (v) < threshold || mean_knn[v] > dense))
+    {
+      slot[v] = static_cast<VertexIndex> (candidates.size ());
+      candidates.push_back (static_cast<VertexIndex> (v));
+    }
+  // Their nearest distinct positions, as a first copy where the position has queries.
+  const int k = static_cast<int> (std::min<std::size_t> (params.spacing_k, n - 1));
+  const auto kk = static_cast<std::size_t> (k);
+  std::vector<VertexIndex> near (candidates.size () * kk, kNone);
+  std::vector<std::uint8_t> planar (candidates.size (), 0);
+  detail::parallelFor (
+      candidates.size (), params.num_threads,
+      [&] (std::size_t begin, std::size_t end) {
+        DistinctNeighbours nearest (search, k);
+        for (std::size_t c = begin; c < end; ++c)
+        {
+          const std::vector<VertexIndex> &found = nearest (candidates[c]);
+          planar[c] = onNeighboursPlane (search.ordered, candidates[c], found);
+          for (std::size_t m = 0; m < found.size (); ++m)
+            near[c * kk + m] =
+                search.isQuery (found[m]) && search.copied (found[m]) ? search.firstCopy (found[m])
+                                                                      : found[m];
+        }
+      },
+      kBlock);
+  // Grow from the typical points (not candidates), through links j -> i (j among i's
+  // nearest) between points of like density; a point reached passes it on when it lies on
+  // its neighbours' plane. The closure does not depend on the order.
+  const auto linked = [&] (VertexIndex j, VertexIndex i) {
+    return search.isQuery (j) && mean_knn[i] <= kSparseSurfaceRatio * mean_knn[j];
+  };
+  const auto each_near = [&] (std::size_t c, const auto &visit) {
+    for (std::size_t m = 0; m < kk && near[c * kk + m] != kNone; ++m)
+      visit (near[c * kk + m]);
+  };
+  std::vector<std::uint8_t> flag (n, 0);  // graph order
+  std::vector<VertexIndex> queue;
+  const auto reach = [&] (VertexIndex j, std::size_t c) {
+    if (!flag[candidates[c]] && linked (j, candidates[c]))
+    {
+      flag[candidates[c]] = 1;
+      if (planar[c])
+        queue.push_back (static_cast<VertexIndex> (c));
+    }
+  };
+  // Who links to whom among the candidates (CSR: the candidates that have c among their
+  // nearest), and the first steps from the typical points.
+  std::vector<std::uint64_t> dependent_ptr (candidates.size () + 1, 0);
+  for (std::size_t c = 0; c < candidates.size (); ++c)
+    each_near (c, [&] (VertexIndex j) {
+      if (slot[j] != kNone)
+        ++dependent_ptr[slot[j] + 1];
+      else
+        reach (j, c);
+    });
+  std::partial_sum (dependent_ptr.begin (), dependent_ptr.end (), dependent_ptr.begin ());
+  std::vector<VertexIndex> dependents (dependent_ptr.back ());
+  {
+    std::vector<std::uint64_t> fill (dependent_ptr.begin (), dependent_ptr.end () - 1);
+    for (std::size_t c = 0; c < candidates.size (); ++c)
+      each_near (c, [&] (VertexIndex j) {
+        if (slot[j] != kNone)
+          dependents[fill[slot[j]]++] = static_cast<VertexIndex> (c);
+      });
+  }
+  for (std::size_t head = 0; head < queue.size (); ++head)
+    for (std::uint64_t e = dependent_ptr[queue[head]]; e < dependent_ptr[queue[head] + 1]; ++e)
+      reach (candidates[queue[head]], dependents[e]);
+  for (std::size_t v = 0; v < n; ++v)
+    if (search.isQuery (v))
+    {
+      const std::size_t first = search.copied (v) ? search.firstCopy (v) : v;
+      out.sparse_surface[search.graph.order[v]] = flag[first] && degree (first) < threshold;
+    }
+}
+
 } // namespace
 
 PointGraph
@@ -917,6 +1104,8 @@ radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params)
 {
   requireValid (std::isfinite (params.residual_multiplier) && params.residual_multiplier >= 0.0,
                 "residual_multiplier must be finite and >= 0");
+  requireValid (std::isfinite (params.sparse_surface_ratio) && params.sparse_surface_ratio >= 0.0,
+                "sparse_surface_ratio must be finite and >= 0");
   RadiusSearch search = prepareRadiusSearch (points, params, true);
   RadiusDegrees out;
   out.radius = search.radius;
@@ -926,14 +1115,18 @@ radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params)
   out.degree.assign (q, 0.0);
   out.mean_knn_distance.assign (q, 0.0f);
   const bool residuals = params.residual_multiplier > 0.0;
+  const bool sparse = params.sparse_surface_ratio > 0.0;
   if (residuals)
     out.off_surface.assign (q, 0);
+  if (sparse)
+    out.sparse_surface.assign (q, 0);
   if (n < 2)
     return out;
   for (std::size_t v = 0; v < n; ++v)
     if (search.isQuery (v))
       out.mean_knn_distance[search.graph.order[v]] = static_cast<float> (search.mean_knn[v]);
-  std::vector<double> ().swap (search.mean_knn);
+  if (!sparse)
+    std::vector<double> ().swap (search.mean_knn);
   // The planes of the normal-residual test per vertex (graph order; the queries' only).
   const double floor = kResidualFloor * search.graph.spacing;
   std::vector<PlaneResiduals> planes (residuals ? n : 0);
@@ -987,6 +1180,32 @@ radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params)
       }
   if (residuals)
     flagOffSurface (search, params, planes, out);
+  if (sparse)
+    flagSparseSurfaces (search, params, search.mean_knn, out);
+  return out;
+}
+
+DegreeThreshold
+automaticDegreeThreshold (const std::vector<double> &degree, double ratio)
+{
+  requireValid (std::isfinite (ratio) && ratio >= 0.0, "the threshold ratio must be finite and >= 0");
+  DegreeThreshold out;
+  if (degree.empty ())
+    return out;
+  std::vector<double> sorted = degree;
+  std::nth_element (sorted.begin (), sorted.begin () + sorted.size () / 4, sorted.end ());
+  double quartile = sorted[sorted.size () / 4];
+  if (quartile == 0.0 && ratio > 0.0)
+  {
+    sorted.erase (std::remove (sorted.begin (), sorted.end (), 0.0), sorted.end ());
+    if (!sorted.empty ())
+    {
+      std::nth_element (sorted.begin (), sorted.begin () + sorted.size () / 4, sorted.end ());
+      quartile = sorted[sorted.size () / 4];
+      out.without_neighbour = degree.size () - sorted.size ();
+    }
+  }
+  out.threshold = ratio * quartile;
   return out;
 }
 

@@ -40,7 +40,7 @@ constexpr PerPoint kGraph = {100.0, 20.0};
 constexpr PerPoint kTikhonov = {300.0, 15.0};
 constexpr PerPoint kTotalVariation = {210.0, 32.0};
 constexpr PerPoint kCholmod = {320.0, 240.0};
-constexpr double kRadiusDegreesPerPoint = 100.0;
+constexpr double kRadiusDegreesPerPoint = 120.0;
 
 std::size_t
 saturate (long double bytes)

@@ -116,6 +116,10 @@ struct RadiusGraphParams
   /** radiusGraphDegrees only: multiplier c of the normal-residual test, 0 (default) =
    *  no test. See RadiusDegrees::off_surface. Valid: >= 0, finite. */
   double residual_multiplier = 0.0;
+  /** radiusGraphDegrees only: ratio r of the sparse-surface test, 0 (default) = no test.
+   *  The points whose degree is below automaticDegreeThreshold (degrees, r) are tested;
+   *  see RadiusDegrees::sparse_surface. Valid: >= 0, finite. */
+  double sparse_surface_ratio = 0.0;
   /** radiusGraphDegrees only: the first `query_rows` rows of the points are the queries,
    *  the others are searched as neighbours only (as PCL's filters search the whole cloud
    *  for the points their indices name); 0 (default) = every row is a query. The
@@ -210,7 +214,39 @@ struct RadiusDegrees
   std::vector<std::uint8_t> off_surface;
   /** The global scale s of the residual test (0 without it). */
   double residual_scale = 0.0;
+  /** With RadiusGraphParams::sparse_surface_ratio r > 0: 1 for the points whose degree is
+   *  below automaticDegreeThreshold (degree, r) but that continue a surface sampled more
+   *  sparsely than the rest of the cloud (a wall far from a laser scanner or a depth
+   *  camera, whose spacing grows with the range, so that epsilon holds few or none of its
+   *  points). The test grows from the cloud's typical points (degree at or above the
+   *  threshold, mean_knn_distance at most 1.25 x spacing) along links j -> i, j among the
+   *  spacing_k nearest distinct positions of i (copies count once, i's own position not
+   *  at all), where i is at most 1.25 times as sparse as j (mean_knn_distance): density
+   *  that changes gradually, as along a surface seen at a growing range. A point reached
+   *  passes the growth on only when it lies on the plane of those neighbours: their
+   *  smallest standard deviation at most 0.4 times their largest, and the point's distance
+   *  to their plane at most 0.4 times the largest. Uniform outliers stay unreached: their
+   *  density drops at once from the surface's, and they lie on no plane (on the synthetic
+   *  shapes with 5% and 20% outliers of docs/evaluation.md, not one outlier more is
+   *  kept). Empty when r = 0. */
+  std::vector<std::uint8_t> sparse_surface;
 };
+
+/** \brief The automatic degree threshold of an outlier test: `ratio` times the first
+ *  quartile of `degree` (the inliers' typical degree, even with up to 25% outliers);
+ *  when more than a quarter of the degrees are 0, the first quartile of the others, so
+ *  that the points without neighbours are still below it. */
+struct DegreeThreshold
+{
+  double threshold = 0.0;  ///< the threshold: ratio x the quartile
+  /** The degrees that were 0 when they were more than a quarter (0 otherwise). */
+  std::size_t without_neighbour = 0;
+};
+
+/** \brief See DegreeThreshold. 0 for no degrees. \throws std::invalid_argument for a
+ *  negative or non-finite ratio. */
+DegreeThreshold
+automaticDegreeThreshold (const std::vector<double> &degree, double ratio);
 
 /** \brief The weighted degree of every point in the epsilon-radius graph of `points`
  *  (the same graph and weights as buildRadiusGraph), computed while searching: the

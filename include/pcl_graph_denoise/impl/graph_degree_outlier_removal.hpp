@@ -117,6 +117,7 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
   std::vector<double> degree;
   std::vector<float> isolation;  // mean distance to the nearest neighbours, for ties
   std::vector<std::uint8_t> off_surface;  // the residual test's verdict (empty without it)
+  std::vector<std::uint8_t> sparse_surface;  // low degree on a sparse surface (empty without)
   try
   {
     core::RadiusGraphParams params;
@@ -129,12 +130,15 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
       params.query_rows = count;
     if (rule_ != OUTLIER_FRACTION)
       params.residual_multiplier = residual_multiplier_;
+    if (rule_ == AUTOMATIC_THRESHOLD && keep_sparse_surfaces_)
+      params.sparse_surface_ratio = automatic_ratio_;
     core::RadiusDegrees result = core::radiusGraphDegrees (gathered.xyz, params);
     used_radius_ = result.radius;
     used_sigma_ = result.sigma;
     degree = std::move (result.degree);
     isolation = std::move (result.mean_knn_distance);
     off_surface = std::move (result.off_surface);
+    sparse_surface = std::move (result.sparse_surface);
     used_residual_scale_ = result.residual_scale;
   }
   catch (const std::exception &e)
@@ -165,33 +169,17 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
     used_threshold_ = degree_threshold_;
     if (rule_ == AUTOMATIC_THRESHOLD)
     {
-      // The first quartile: inliers' typical degree even with up to 25% outliers.
-      std::vector<double> sorted = degree;
-      double quartile = 0.0;
-      if (!sorted.empty ())
-      {
-        std::nth_element (sorted.begin (), sorted.begin () + count / 4, sorted.end ());
-        quartile = sorted[count / 4];
-      }
-      if (quartile == 0.0 && automatic_ratio_ > 0.0)
-      {
-        // More than a quarter of the points have no weighted neighbour: the quartile of
-        // the others (if any), so that those are still removed.
-        sorted.erase (std::remove (sorted.begin (), sorted.end (), 0.0), sorted.end ());
-        if (!sorted.empty ())
-        {
-          std::nth_element (sorted.begin (), sorted.begin () + sorted.size () / 4, sorted.end ());
-          quartile = sorted[sorted.size () / 4];
-          PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] %zu of %zu points have no "
-                    "neighbour within epsilon = %g: more than a quarter, so the automatic "
-                    "threshold comes from the first quartile of the others' degrees.\n",
-                    name.c_str (), count - sorted.size (), count, used_radius_);
-        }
-      }
-      used_threshold_ = automatic_ratio_ * quartile;
+      const core::DegreeThreshold automatic = core::automaticDegreeThreshold (degree, automatic_ratio_);
+      if (automatic.without_neighbour > 0)
+        PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] %zu of %zu points have no "
+                  "neighbour within epsilon = %g: more than a quarter, so the automatic "
+                  "threshold comes from the first quartile of the others' degrees.\n",
+                  name.c_str (), automatic.without_neighbour, count, used_radius_);
+      used_threshold_ = automatic.threshold;
     }
     for (std::size_t r = 0; r < count; ++r)
-      inlier[r] = degree[r] >= used_threshold_ && (off_surface.empty () || !off_surface[r]);
+      inlier[r] = (degree[r] >= used_threshold_ || (!sparse_surface.empty () && sparse_surface[r])) &&
+                  (off_surface.empty () || !off_surface[r]);
   }
 
   // Walk the caller's index list in its order: kept points to `indices`, the rest

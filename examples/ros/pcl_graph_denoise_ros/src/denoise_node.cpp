@@ -69,7 +69,7 @@ parameterNames (StepKind kind)
 {
   static const std::set<std::string> outliers = {
       "radius", "sigma", "threshold_ratio", "degree_threshold", "outlier_fraction",
-      "residual_threshold", "keep_organized", "threads", "memory_limit"};
+      "residual_threshold", "keep_sparse_surfaces", "keep_organized", "threads", "memory_limit"};
   static const std::set<std::string> tikhonov = {
       "k", "sigma", "gamma", "graph_iterations", "normal_displacement", "local_surface",
       "adaptive_support", "patch_cover", "shrinkage_correction", "tolerance", "max_iterations", "solver", "threads",
@@ -309,6 +309,8 @@ makeStep (StepKind kind, const Parameters &parameters)
       }
       else if (name == "residual_threshold")
         filter.setResidualThreshold (number (p, 0.0, max, "a number >= 0 (0 = off)"));
+      else if (name == "keep_sparse_surfaces")
+        filter.setKeepSparseSurfaces (boolean (p));
       else if (name == "keep_organized")
         step.keep_organized = boolean (p);
       else if (name == "threads")
