@@ -818,11 +818,18 @@ TEST (RadiusGraph, SparseSurfaceContinuesARecedingFloorOnly)
   const auto cloud = pcl_graph_denoise::testing::recedingFloor (300, 5, parts);
   PointMatrix p = synthetic::toMatrix (cloud);
   // A patch as sparse as the far floor but apart from it (5 units above its near end),
-  // whose density does not continue the floor's: not reached.
-  const Eigen::Index patch = p.rows ();
-  p.conservativeResize (p.rows () + 100, 3);
+  // whose density does not continue the floor's: not reached. And a ring of 200 points
+  // 0.63 apart, 20 units around the floor (a spinning scanner's far ring): out of reach
+  // too, but a line as dense as itself, so it starts a growth of its own.
+  const Eigen::Index patch = p.rows (), ring = patch + 100;
+  p.conservativeResize (p.rows () + 300, 3);
   for (int i = 0; i < 100; ++i)
     p.row (patch + i) << 0.1f * float (i % 10), 0.1f * float (i / 10), 5.0f;
+  for (int i = 0; i < 200; ++i)
+  {
+    const float angle = 0.0314159f * float (i);
+    p.row (ring + i) << 5.0f + 20.0f * std::cos (angle), 20.0f * std::sin (angle), 0.0f;
+  }
   RadiusGraphParams params;
   params.sparse_surface_ratio = 0.2;
   const RadiusDegrees d = radiusGraphDegrees (p, params);
@@ -852,8 +859,12 @@ TEST (RadiusGraph, SparseSurfaceContinuesARecedingFloorOnly)
   EXPECT_GE (far_kept, far - far / 50) << far_low;
   EXPECT_EQ (outliers_flagged, 0u);
   EXPECT_EQ (near_flagged, 0u);  // only points below the threshold are flagged
-  for (Eigen::Index i = patch; i < p.rows (); ++i)
+  for (Eigen::Index i = patch; i < ring; ++i)
     EXPECT_FALSE (d.sparse_surface[i]) << "patch point " << i - patch;
+  for (Eigen::Index i = ring; i < p.rows (); ++i)
+    ASSERT_LT (d.degree[i], threshold);
+  for (Eigen::Index i = ring; i < p.rows (); ++i)
+    EXPECT_TRUE (d.sparse_surface[i]) << "ring point " << i - ring;
   // The flags do not depend on the number of threads, nor on the row order.
   params.num_threads = 1;
   EXPECT_EQ (radiusGraphDegrees (p, params).sparse_surface, d.sparse_surface);
@@ -873,8 +884,10 @@ TEST (RadiusGraph, SparseSurfaceContinuesARecedingFloorOnly)
     ASSERT_EQ (twice.sparse_surface[i], twice.sparse_surface[p.rows () + i]) << i;
     if (i < patch && parts[i] == FloorPart::FAR)
       twice_far_kept += twice.degree[i] >= twice_threshold || twice.sparse_surface[i];
-    if (i >= patch || parts[i] == FloorPart::OUTLIER)
+    if ((i >= patch && i < ring) || (i < patch && parts[i] == FloorPart::OUTLIER))
       ASSERT_FALSE (twice.sparse_surface[i]) << i;
+    if (i >= ring)  // (a copy's weight of 1 may lift it over the threshold alone)
+      ASSERT_TRUE (twice.sparse_surface[i] || twice.degree[i] >= twice_threshold) << i;
   }
   EXPECT_GE (twice_far_kept, far - far / 50);
   // Off (the default): no flags, and the degrees are the same.
@@ -882,6 +895,38 @@ TEST (RadiusGraph, SparseSurfaceContinuesARecedingFloorOnly)
   const RadiusDegrees off = radiusGraphDegrees (p, params);
   EXPECT_TRUE (off.sparse_surface.empty ());
   EXPECT_EQ (off.degree, d.degree);
+}
+
+TEST (RadiusGraph, NormalResidualFitsTheNearestNeighboursOfACrowdedBall)
+{
+  // A wide epsilon on a curved surface: each ball holds about 1,500 points of a sphere,
+  // and the plane through them all sags below each point by about r^2 / 4 = 0.076, which
+  // sets the cloud's residual scale, so that a probe 0.15 off the sphere hides (checked:
+  // with every neighbour fitted, none of the probes is flagged). The plane of the nearest
+  // 256 (a cap of radius about 0.23) sags by about 0.013, and the probes stand out.
+  const float noise = 0.002f;
+  const auto sphere = synthetic::noisySphere (20000, 1.0, noise, 41);
+  PointMatrix p (20000 + 8, 3);
+  p.topRows (20000) = synthetic::toMatrix (sphere);
+  for (int m = 0; m < 8; ++m)
+  {
+    const Eigen::Vector3f direction =
+        Eigen::Vector3f (std::cos (0.8f * m), std::sin (0.8f * m), 0.3f * float (m % 3) - 0.3f).normalized ();
+    p.row (20000 + m) = (1.15f * direction).transpose ();
+  }
+  RadiusGraphParams params;
+  params.radius = 0.55;
+  params.sigma = 0.2;
+  params.residual_multiplier = 4.0;
+  const RadiusDegrees d = radiusGraphDegrees (p, params);
+  for (int m = 0; m < 8; ++m)
+    EXPECT_TRUE (d.off_surface[20000 + m]) << "probe " << m;
+  std::size_t flagged = 0;
+  for (int i = 0; i < 20000; ++i)
+    flagged += d.off_surface[i];
+  EXPECT_LE (flagged, 20u);
+  params.num_threads = 1;
+  EXPECT_EQ (radiusGraphDegrees (p, params).off_surface, d.off_surface);
 }
 
 TEST (RadiusGraph, NormalResidualIsNotMaskedByAFewOutliersNearby)

@@ -714,6 +714,12 @@ prepareRadiusSearch (const PointMatrix &points, const RadiusGraphParams &params,
 /** Fewest neighbours whose plane gives a point a normal residual. */
 constexpr std::size_t kMinPlaneNeighbours = 5;
 
+/** Most neighbours a point's plane is fitted to: its nearest ones where its epsilon-ball
+ *  holds more (a laser scan's points beside the scanner had 20,000, and fitting them all
+ *  took most of the filter's time; a surface sampled evenly has about 30 within the
+ *  default epsilon). */
+constexpr std::size_t kMaxPlaneNeighbours = 256;
+
 /** Most neighbours level with a point flagged off the surface: an outlier may have a
  *  companion, but three points level off a plane make a layer. */
 constexpr std::size_t kMaxSupport = 1;
@@ -866,19 +872,30 @@ flagOffSurface (const RadiusSearch &search, const RadiusGraphParams &params,
 }
 
 /** The sparse-surface test's limits (see RadiusDegrees::sparse_surface): the largest
- *  ratio of a linked point's mean k-NN distance to its neighbour's, and the flatness and
- *  offset of a point that passes the link on. */
+ *  ratio of a linked point's mean k-NN distance to its neighbour's (or to the median of
+ *  its neighbours' for a start on a line), and the flatness and offset of a point that
+ *  passes the link on. */
 constexpr double kSparseSurfaceRatio = 1.25;
 constexpr double kSparseSurfaceFlatness = 0.4;
 constexpr double kSparseSurfaceOffset = 0.4;
+/** A point's neighbours lie on a line when their middle standard deviation is at most
+ *  this times their largest. */
+constexpr double kSparseSurfaceLine = 0.1;
 
-/** Whether `self` lies on the plane of `neighbours` (see RadiusDegrees::sparse_surface). */
-bool
-onNeighboursPlane (const PointMatrix &points, VertexIndex self,
-                   const std::vector<VertexIndex> &neighbours)
+
+/** How `self` lies among `neighbours` (see RadiusDegrees::sparse_surface). */
+enum class Lie : std::uint8_t
+{
+  APART,  ///< off their plane, or they lie on none
+  PLANE,  ///< on the plane of its neighbours
+  LINE,   ///< on the line of its neighbours
+};
+
+Lie
+lieAmong (const PointMatrix &points, VertexIndex self, const std::vector<VertexIndex> &neighbours)
 {
   if (neighbours.size () < 3)
-    return false;
+    return Lie::APART;
   const Eigen::Vector3d p = points.row (self).transpose ().cast<double> ();
   Eigen::Vector3d first = Eigen::Vector3d::Zero ();
   Eigen::Matrix3d second = Eigen::Matrix3d::Zero ();
@@ -893,11 +910,22 @@ onNeighboursPlane (const PointMatrix &points, VertexIndex self,
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   eig.computeDirect (second / count - mean * mean.transpose ());
   const double smallest = std::max (eig.eigenvalues ()(0), 0.0);
+  const double middle = std::max (eig.eigenvalues ()(1), 0.0);
   const double largest = eig.eigenvalues ()(2);
+  if (!(largest > 0.0))
+    return Lie::APART;
   const double offset = eig.eigenvectors ().col (0).dot (mean);
-  return largest > 0.0 &&
-         smallest <= kSparseSurfaceFlatness * kSparseSurfaceFlatness * largest &&
-         offset * offset <= kSparseSurfaceOffset * kSparseSurfaceOffset * largest;
+  const double limit = kSparseSurfaceOffset * kSparseSurfaceOffset * largest;
+  if (middle <= kSparseSurfaceLine * kSparseSurfaceLine * largest)
+  {
+    const double along = eig.eigenvectors ().col (2).dot (mean);
+    if (mean.squaredNorm () - along * along <= limit)
+      return Lie::LINE;
+  }
+  return smallest <= kSparseSurfaceFlatness * kSparseSurfaceFlatness * largest &&
+                 offset * offset <= limit
+             ? Lie::PLANE
+             : Lie::APART;
 }
 
 /** Most points a sparse-surface query looks through for its distinct neighbours (a
@@ -984,7 +1012,7 @@ flagSparseSurfaces (const RadiusSearch &search, const RadiusGraphParams &params,
   const int k = static_cast<int> (std::min<std::size_t> (params.spacing_k, n - 1));
   const auto kk = static_cast<std::size_t> (k);
   std::vector<VertexIndex> near (candidates.size () * kk, kNone);
-  std::vector<std::uint8_t> planar (candidates.size (), 0);
+  std::vector<Lie> lie (candidates.size (), Lie::APART);
   detail::parallelFor (
       candidates.size (), params.num_threads,
       [&] (std::size_t begin, std::size_t end) {
@@ -992,7 +1020,7 @@ flagSparseSurfaces (const RadiusSearch &search, const RadiusGraphParams &params,
         for (std::size_t c = begin; c < end; ++c)
         {
           const std::vector<VertexIndex> &found = nearest (candidates[c]);
-          planar[c] = onNeighboursPlane (search.ordered, candidates[c], found);
+          lie[c] = lieAmong (search.ordered, candidates[c], found);
           for (std::size_t m = 0; m < found.size (); ++m)
             near[c * kk + m] =
                 search.isQuery (found[m]) && search.copied (found[m]) ? search.firstCopy (found[m])
@@ -1016,20 +1044,43 @@ flagSparseSurfaces (const RadiusSearch &search, const RadiusGraphParams &params,
     if (!flag[candidates[c]] && linked (j, candidates[c]))
     {
       flag[candidates[c]] = 1;
-      if (planar[c])
+      if (lie[c] != Lie::APART)
         queue.push_back (static_cast<VertexIndex> (c));
     }
   };
   // Who links to whom among the candidates (CSR: the candidates that have c among their
   // nearest), and the first steps from the typical points.
   std::vector<std::uint64_t> dependent_ptr (candidates.size () + 1, 0);
+  std::vector<double> densities;
   for (std::size_t c = 0; c < candidates.size (); ++c)
+  {
+    // A line of points as dense as its neighbours (a far ring of a spinning scanner,
+    // out of reach of the rest): a start of its own.
+    if (lie[c] == Lie::LINE)
+    {
+      densities.clear ();
+      each_near (c, [&] (VertexIndex j) {
+        if (search.isQuery (j))
+          densities.push_back (mean_knn[j]);
+      });
+      if (!densities.empty ())
+      {
+        auto middle = densities.begin () + densities.size () / 2;
+        std::nth_element (densities.begin (), middle, densities.end ());
+        if (mean_knn[candidates[c]] <= kSparseSurfaceRatio * *middle && !flag[candidates[c]])
+        {
+          flag[candidates[c]] = 1;
+          queue.push_back (static_cast<VertexIndex> (c));
+        }
+      }
+    }
     each_near (c, [&] (VertexIndex j) {
       if (slot[j] != kNone)
         ++dependent_ptr[slot[j] + 1];
       else
         reach (j, c);
     });
+  }
   std::partial_sum (dependent_ptr.begin (), dependent_ptr.end (), dependent_ptr.begin ());
   std::vector<VertexIndex> dependents (dependent_ptr.back ());
   {
@@ -1139,6 +1190,7 @@ radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params)
         std::vector<double> weights;
         std::vector<double> squared;
         std::vector<float> gaussian;
+        std::vector<std::pair<double, VertexIndex>> nearest;
         PlaneFit fit;
         for (std::size_t t = begin; t < end; ++t)
         {
@@ -1157,6 +1209,18 @@ radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params)
               std::accumulate (gaussian.begin (), gaussian.end (), 0.0);
           if (!residuals)
             continue;
+          if (neighbors.size () > kMaxPlaneNeighbours)
+          {
+            // The nearest, by (distance, index): a choice that depends on nothing else.
+            nearest.resize (neighbors.size ());
+            for (std::size_t m = 0; m < neighbors.size (); ++m)
+              nearest[m] = {squared[m], neighbors[m]};
+            std::nth_element (nearest.begin (), nearest.begin () + kMaxPlaneNeighbours,
+                              nearest.end ());
+            neighbors.resize (kMaxPlaneNeighbours);
+            for (std::size_t m = 0; m < kMaxPlaneNeighbours; ++m)
+              neighbors[m] = nearest[m].second;
+          }
           weights.assign (neighbors.size (), 1.0);
           if (fit.fit (search.ordered, vi, neighbors, weights, floor))
           {
