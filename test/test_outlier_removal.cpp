@@ -692,6 +692,29 @@ TEST (OutlierRemovalBadInput, HeavilyDuplicatedCloudIsMeasuredOnItsDistinctPosit
   EXPECT_NEAR (filter.getUsedRadius (), single.getUsedRadius (), 1e-6 * single.getUsedRadius ());
 }
 
+TEST (OutlierRemovalBadInput, FewerDistinctPositionsThanNeighboursEndTheSparseSurfaceSearch)
+{
+  // Three close positions ten times each and a far one twice: the far pair falls below the
+  // threshold, and the search for its 10 nearest distinct positions, which finds only
+  // three in the whole cloud, must end (it ran forever: a fuzzer's input).
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  for (int copy = 0; copy < 10; ++copy)
+  {
+    cloud->push_back (pcl::PointXYZ (0.0f, 0.0f, 0.0f));
+    cloud->push_back (pcl::PointXYZ (0.1f, 0.0f, 0.0f));
+    cloud->push_back (pcl::PointXYZ (0.0f, 0.1f, 0.0f));
+  }
+  cloud->push_back (pcl::PointXYZ (100.0f, 0.0f, 0.0f));
+  cloud->push_back (pcl::PointXYZ (100.0f, 0.0f, 0.0f));
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter (true);
+  filter.setInputCloud (cloud);
+  pcl::Indices kept;
+  filter.filter (kept);
+  EXPECT_GT (filter.getUsedDegreeThreshold (), 1.0);  // the far pair is a candidate
+  EXPECT_EQ (kept.size (), 30u);
+  EXPECT_EQ (*filter.getRemovedIndices (), (pcl::Indices{30, 31}));
+}
+
 TEST (OutlierRemovalBadInput, AStackOfCopiesChangesNothingElse)
 {
   // A sphere 2 units from the origin and, as some drivers store invalid returns, up to

@@ -974,7 +974,8 @@ public:
         }
         neighbors_.push_back (j);
       }
-      if (neighbors_.size () >= k_ || got < wanted || wanted >= kMaxSparseSurfaceSearch)
+      if (neighbors_.size () >= k_ || got < wanted || wanted >= n ||
+          wanted >= kMaxSparseSurfaceSearch)
         return neighbors_;
       wanted = std::min ({n, 2 * wanted, kMaxSparseSurfaceSearch});
     }
