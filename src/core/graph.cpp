@@ -745,6 +745,32 @@ finiteMedian (std::vector<float> values)
   return *middle;
 }
 
+/** The mean of `neighbors`' positions relative to `p`, and their covariance, each with
+ *  its weight (`weights`: one per neighbour; null: all 1). False when the weights sum to
+ *  0. Relative to `p`, so that large coordinates lose no precision. */
+bool
+neighbourMoments (const PointMatrix &points, const Eigen::Vector3d &p,
+                  const std::vector<VertexIndex> &neighbors, const std::vector<double> *weights,
+                  Eigen::Vector3d &mean, Eigen::Matrix3d &covariance)
+{
+  double total = 0.0;
+  Eigen::Vector3d first = Eigen::Vector3d::Zero ();
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero ();
+  for (std::size_t m = 0; m < neighbors.size (); ++m)
+  {
+    const double w = weights ? (*weights)[m] : 1.0;
+    const Eigen::Vector3d q = points.row (neighbors[m]).transpose ().cast<double> () - p;
+    total += w;
+    first += w * q;
+    second.noalias () += (w * q) * q.transpose ();
+  }
+  if (!(total > 0.0))
+    return false;
+  mean = first / total;
+  covariance = second / total - mean * mean.transpose ();
+  return true;
+}
+
 /** The plane of a point's neighbours, itself excluded, refitted without the neighbours
  *  farther than 3 spreads from the last plane until none is (at most kMaxRefits times):
  *  a few outliers among them then neither tilt it nor widen its spread, and near a sharp
@@ -811,21 +837,11 @@ private:
   solve (const PointMatrix &points, const Eigen::Vector3d &p,
          const std::vector<VertexIndex> &neighbors, const std::vector<double> &weights)
   {
-    double total = 0.0;
-    Eigen::Vector3d first = Eigen::Vector3d::Zero ();
-    Eigen::Matrix3d second = Eigen::Matrix3d::Zero ();
-    for (std::size_t m = 0; m < neighbors.size (); ++m)
-    {
-      const double w = weights[m];
-      const Eigen::Vector3d q = points.row (neighbors[m]).transpose ().cast<double> () - p;
-      total += w;
-      first += w * q;
-      second.noalias () += (w * q) * q.transpose ();
-    }
-    if (!(total > 0.0))
+    Eigen::Vector3d mean;
+    Eigen::Matrix3d covariance;
+    if (!neighbourMoments (points, p, neighbors, &weights, mean, covariance))
       return false;
-    const Eigen::Vector3d mean = first / total;
-    eig.computeDirect (second / total - mean * mean.transpose ());
+    eig.computeDirect (covariance);
     normal = eig.eigenvectors ().col (0);
     offset = normal.dot (mean);
     residual = std::abs (offset);
@@ -882,7 +898,6 @@ constexpr double kSparseSurfaceOffset = 0.4;
  *  this times their largest. */
 constexpr double kSparseSurfaceLine = 0.1;
 
-
 /** How `self` lies among `neighbours` (see RadiusDegrees::sparse_surface). */
 enum class Lie : std::uint8_t
 {
@@ -894,21 +909,14 @@ enum class Lie : std::uint8_t
 Lie
 lieAmong (const PointMatrix &points, VertexIndex self, const std::vector<VertexIndex> &neighbours)
 {
-  if (neighbours.size () < 3)
+  Eigen::Vector3d mean;
+  Eigen::Matrix3d covariance;
+  if (neighbours.size () < 3 ||
+      !neighbourMoments (points, points.row (self).transpose ().cast<double> (), neighbours,
+                         nullptr, mean, covariance))
     return Lie::APART;
-  const Eigen::Vector3d p = points.row (self).transpose ().cast<double> ();
-  Eigen::Vector3d first = Eigen::Vector3d::Zero ();
-  Eigen::Matrix3d second = Eigen::Matrix3d::Zero ();
-  for (const VertexIndex j : neighbours)
-  {
-    const Eigen::Vector3d q = points.row (j).transpose ().cast<double> () - p;
-    first += q;
-    second.noalias () += q * q.transpose ();
-  }
-  const double count = double (neighbours.size ());
-  const Eigen::Vector3d mean = first / count;
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-  eig.computeDirect (second / count - mean * mean.transpose ());
+  eig.computeDirect (covariance);
   const double smallest = std::max (eig.eigenvalues ()(0), 0.0);
   const double middle = std::max (eig.eigenvalues ()(1), 0.0);
   const double largest = eig.eigenvalues ()(2);
