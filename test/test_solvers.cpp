@@ -145,6 +145,34 @@ TEST (Tikhonov, ConjugateGradientAgreesWithCholmod)
   EXPECT_LT ((a - b).cwiseAbs ().maxCoeff (), 1e-8);
 }
 
+TEST (Tikhonov, ReportsTheResidualOfItsResultInDoublePrecision)
+{
+  // The conjugate gradient runs its vectors in single precision first: its report must
+  // still be the residual of the returned x, computed here in double, and within the
+  // tolerance; at a tolerance below single precision's reach the double-precision phase
+  // takes it there. Since I + 2 gamma L >= I, |x - x*| <= |residual| (CHOLMOD's x*).
+  const Problem p (20000, 0.01);
+  const double gamma = 20.0;
+  TikhonovParams direct;
+  direct.solver = TikhonovSolver::CHOLMOD;
+  const Signal3 exact = solveTikhonov (p.graph, p.f, gamma, direct);
+  const double scale = (p.f.rowwise () - p.f.colwise ().mean ()).norm ();
+  for (const double tolerance : {1e-3, 1e-4, 1e-7, 1e-11})
+  {
+    TikhonovParams params;
+    params.tolerance = tolerance;
+    SolverReport report;
+    const Signal3 x = solveTikhonov (p.graph, p.f, gamma, params, &report);
+    Signal3 lx;
+    applyLaplacian (p.graph, x, lx);
+    const double residual = (x + 2.0 * gamma * lx - p.f).norm () / scale;
+    EXPECT_TRUE (report.converged) << tolerance;
+    EXPECT_LE (residual, tolerance) << tolerance;
+    EXPECT_NEAR (report.residual, residual, 1e-6 * residual + 1e-15) << tolerance;
+    EXPECT_LE ((x - exact).norm () / scale, tolerance) << tolerance;
+  }
+}
+
 TEST (Tikhonov, ZeroGammaIsTheIdentityAndTheMeanIsKept)
 {
   const Problem p (2000);

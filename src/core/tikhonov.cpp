@@ -9,6 +9,7 @@
 #include "parallel.h"
 #include "solver_support.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -17,54 +18,96 @@ namespace core {
 
 namespace {
 
-/** Jacobi-preconditioned conjugate gradient on (I + 2 gamma L), one scalar step size per
- *  column, the three columns fused in each pass over the graph. */
-Signal3
-conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
-                   const TikhonovParams &params, SolverReport &report)
+/** The single-precision phase of the conjugate gradient stops once its residual is this
+ *  many times below the one it started from, also when the tolerance lies lower: single
+ *  precision takes a residual about that far down whatever the system, and the phase in
+ *  double precision, started from its result, takes it the rest of the way. */
+constexpr double kSinglePrecisionReach = 1e-5;
+
+template <typename Scalar>
+using Columns3 = Eigen::Matrix<Scalar, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+/** r = f - (I + 2 gamma L) x in double precision; returns its Frobenius norm. */
+double
+trueResidual (const PointGraph &graph, const Signal3 &f, const Signal3 &x, double g2,
+              int threads, Signal3 &r)
+{
+  const std::size_t n = graph.numVertices ();
+  r.resize (static_cast<Eigen::Index> (n), 3);
+  return std::sqrt (detail::parallelSum<double> (n, threads, [&] (std::size_t begin, std::size_t end) {
+    double sum = 0.0;
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      double a[3] = {0.0, 0.0, 0.0};
+      for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+      {
+        const double w = graph.weight[e];
+        const VertexIndex j = graph.col[e];
+        for (int c = 0; c < 3; ++c)
+          a[c] += w * (x (i, c) - x (j, c));
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        r (i, c) = f (i, c) - (x (i, c) + g2 * a[c]);
+        sum += r (i, c) * r (i, c);
+      }
+    }
+    return sum;
+  }));
+}
+
+/** Jacobi-preconditioned conjugate gradient on (I + 2 gamma L) d = r for a correction d,
+ *  added to x at the end: one scalar step size per column, the three columns fused in
+ *  each pass over the graph, the vectors stored in Scalar (single precision halves the
+ *  memory traffic that bounds the loop) and every sum accumulated in double. The product
+ *  is taken as (1 + 2 gamma d_i) p_i - 2 gamma sum_j w_ij p_j. Stops once the recursive
+ *  residual is at most `target` or after `max_iterations`; `done` iterations came before
+ *  (for the progress reports). Returns the iterations run. */
+template <typename Scalar>
+int
+correct (const PointGraph &graph, double g2, const std::vector<double> &degree,
+         const Signal3 &r0, double target, int max_iterations, int done,
+         const TikhonovParams &params, double scale, Signal3 &x)
 {
   const std::size_t n = graph.numVertices ();
   const int threads = params.num_threads;
-  const double g2 = 2.0 * gamma;
-  const std::vector<double> degree = weightedDegree (graph, threads);
+  const Scalar g2s = static_cast<Scalar> (g2);
+  // The diagonal and its inverse (the Jacobi preconditioner, applied where it is used
+  // rather than stored with r: one array fewer to write and read back per iteration).
+  std::vector<Scalar> diagonal (n), inverse (n);
+  detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      diagonal[i] = static_cast<Scalar> (1.0 + g2 * degree[i]);
+      inverse[i] = static_cast<Scalar> (1.0 / (1.0 + g2 * degree[i]));
+    }
+  });
+  Columns3<Scalar> d = Columns3<Scalar>::Zero (static_cast<Eigen::Index> (n), 3);
+  Columns3<Scalar> r = r0.template cast<Scalar> (), p (n, 3), q (n, 3);
 
-  // A p for the current direction, with the column dot products p . A p.
-  auto applyA = [&] (const Signal3 &p, Signal3 &q) {
+  // q = A p, with the column dot products p . A p.
+  auto applyA = [&] () {
     return detail::parallelSum<detail::Sum3> (n, threads, [&] (std::size_t begin, std::size_t end) {
       detail::Sum3 pq;
       for (std::size_t i = begin; i < end; ++i)
       {
-        double a[3] = {0.0, 0.0, 0.0};
+        Scalar a[3] = {0, 0, 0};
         for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
         {
-          const double w = graph.weight[e];
+          const Scalar w = graph.weight[e];
           const VertexIndex j = graph.col[e];
           for (int c = 0; c < 3; ++c)
-            a[c] += w * (p (i, c) - p (j, c));
+            a[c] += w * p (j, c);
         }
         for (int c = 0; c < 3; ++c)
         {
-          q (i, c) = p (i, c) + g2 * a[c];
-          pq.v[c] += p (i, c) * q (i, c);
+          q (i, c) = diagonal[i] * p (i, c) - g2s * a[c];
+          pq.v[c] += double (p (i, c)) * double (q (i, c));
         }
       }
       return pq;
     });
   };
-
-  const double scale = detail::residualScale (graph, f, threads);
-  // The Jacobi preconditioner's diagonal; its product with r is taken where it is used
-  // rather than stored (one array fewer to write and read back per iteration: the loop
-  // is bound by memory traffic).
-  std::vector<double> inverse_diagonal (n);
-  detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i)
-      inverse_diagonal[i] = 1.0 / (1.0 + g2 * degree[i]);
-  });
-  Signal3 x = f, r (n, 3), p (n, 3), q (n, 3);
-  // r = f - A f = -2 gamma L f.
-  applyA (x, q);
-  r = f - q;
   // The squared norm of r and the dot products r . z with its preconditioned copy z.
   struct Residual
   {
@@ -79,11 +122,12 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
     }
   };
   const auto sumRow = [&] (std::size_t i, Residual &sums) {
-    const double m = inverse_diagonal[i];
+    const double m = inverse[i];
     for (int c = 0; c < 3; ++c)
     {
-      sums.rr += r (i, c) * r (i, c);
-      sums.rz.v[c] += r (i, c) * (m * r (i, c));
+      const double ri = r (i, c);
+      sums.rr += ri * ri;
+      sums.rz.v[c] += ri * (m * ri);
     }
   };
   Residual sums = detail::parallelSum<Residual> (n, threads, [&] (std::size_t begin, std::size_t end) {
@@ -92,21 +136,19 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
     {
       sumRow (i, partial);
       for (int c = 0; c < 3; ++c)
-        p (i, c) = inverse_diagonal[i] * r (i, c);
+        p (i, c) = inverse[i] * r (i, c);
     }
     return partial;
   });
   detail::Sum3 rz = sums.rz;
   double residual = std::sqrt (sums.rr);
-  report.residual = scale > 0.0 ? residual / scale : 0.0;
-  report.converged = residual <= params.tolerance * scale;
   int it = 0;
-  while (!report.converged && it < params.max_iterations)
+  while (residual > target && it < max_iterations)
   {
-    const detail::Sum3 pq = applyA (p, q);
-    double alpha[3];
+    const detail::Sum3 pq = applyA ();
+    Scalar alpha[3];
     for (int c = 0; c < 3; ++c)
-      alpha[c] = pq.v[c] > 0.0 ? rz.v[c] / pq.v[c] : 0.0;
+      alpha[c] = static_cast<Scalar> (pq.v[c] > 0.0 ? rz.v[c] / pq.v[c] : 0.0);
     // The step and the new residual's sums in one pass.
     sums = detail::parallelSum<Residual> (n, threads, [&] (std::size_t begin, std::size_t end) {
       Residual partial;
@@ -114,7 +156,7 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
       {
         for (int c = 0; c < 3; ++c)
         {
-          x (i, c) += alpha[c] * p (i, c);
+          d (i, c) += alpha[c] * p (i, c);
           r (i, c) -= alpha[c] * q (i, c);
         }
         sumRow (i, partial);
@@ -123,26 +165,54 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
     });
     residual = std::sqrt (sums.rr);
     ++it;
-    report.residual = scale > 0.0 ? residual / scale : 0.0;
-    report.converged = residual <= params.tolerance * scale;
-    if (params.progress && it % 10 == 0)
-      params.progress (it, report.residual);
-    if (report.converged)
+    if (params.progress && (done + it) % 10 == 0)
+      params.progress (done + it, scale > 0.0 ? residual / scale : 0.0);
+    if (residual <= target)
       break;
-    double beta[3];
+    Scalar beta[3];
     for (int c = 0; c < 3; ++c)
-      beta[c] = rz.v[c] > 0.0 ? sums.rz.v[c] / rz.v[c] : 0.0;
+      beta[c] = static_cast<Scalar> (rz.v[c] > 0.0 ? sums.rz.v[c] / rz.v[c] : 0.0);
     rz = sums.rz;
     detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i)
-      {
-        const double m = inverse_diagonal[i];
         for (int c = 0; c < 3; ++c)
-          p (i, c) = m * r (i, c) + beta[c] * p (i, c);
-      }
+          p (i, c) = inverse[i] * r (i, c) + beta[c] * p (i, c);
     });
   }
+  x += d.template cast<double> ();
+  return it;
+}
+
+/** The conjugate gradient in mixed precision: a correction of x = f solved with its
+ *  vectors in single precision, the residual of the result recomputed in double, and,
+ *  where it is still above the tolerance, a further correction in double precision. */
+Signal3
+conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
+                   const TikhonovParams &params, SolverReport &report)
+{
+  const int threads = params.num_threads;
+  const double g2 = 2.0 * gamma;
+  const std::vector<double> degree = weightedDegree (graph, threads);
+  const double scale = detail::residualScale (graph, f, threads);
+  const double target = params.tolerance * scale;
+  Signal3 x = f, r;
+  double residual = trueResidual (graph, f, x, g2, threads, r);
+  int it = 0;
+  if (residual > target && params.max_iterations > 0)
+  {
+    it += correct<float> (graph, g2, degree, r, std::max (target, kSinglePrecisionReach * residual),
+                          params.max_iterations, it, params, scale, x);
+    residual = trueResidual (graph, f, x, g2, threads, r);
+    if (residual > target && it < params.max_iterations)
+    {
+      it += correct<double> (graph, g2, degree, r, target, params.max_iterations - it, it,
+                             params, scale, x);
+      residual = trueResidual (graph, f, x, g2, threads, r);
+    }
+  }
   report.iterations = it;
+  report.residual = scale > 0.0 ? residual / scale : 0.0;
+  report.converged = residual <= target;
   return x;
 }
 

@@ -39,7 +39,12 @@ struct SolverReport
 /** \brief Solvers for the Tikhonov system (I + 2 gamma L) x = f. */
 enum class TikhonovSolver
 {
-  CONJUGATE_GRADIENT,  ///< Jacobi-preconditioned CG, three columns fused (default)
+  /** Jacobi-preconditioned CG, three columns fused (default), in mixed precision: its
+   *  vectors in single precision first (the loop is bound by memory traffic), then the
+   *  residual of the result recomputed in double and, where it is still above the
+   *  tolerance, CG in double precision from there. The reported residual is the one of
+   *  the returned x, in double. */
+  CONJUGATE_GRADIENT,
   CHOLMOD              ///< exact sparse Cholesky (SuiteSparse); for small and medium clouds
 };
 
