@@ -28,10 +28,12 @@ namespace {
  * at 1M points and less at 200k (its fill-in grows faster than N: a rough bound). The
  * smoothing peak is the larger of the graph's build and the graph with the solver's
  * state (signals of N x 3 doubles, the normals' and quadric fits' results). The blended
- * quadrics keep every vertex's patch (17 doubles) for a second pass: measured again at
+ * quadrics kept every vertex's patch (17 doubles) for a second pass: measured again at
  * 1M points and k = 10 with them, Tikhonov 461 and TV 536, and Tikhonov's a raised by 70
  * to keep the margin; the patch centres of setPatchCover add a flag per point (and four
- * bytes of counts while they are chosen), within that margin. */
+ * bytes of counts while they are chosen), within that margin, and since 2026-12-06 only
+ * the vertices that carry a patch keep one (40% of them at the default cover; four bytes
+ * per point of slot numbers), so that these bounds hold with room to spare. */
 struct PerPoint
 {
   double a, b;

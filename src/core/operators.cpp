@@ -5,6 +5,7 @@
 #include <pcl_graph_denoise/core/operators.h>
 
 #include "components.h"
+#include "huge_pages.h"
 #include "parallel.h"
 
 #include <algorithm>
@@ -43,7 +44,8 @@ std::vector<double>
 weightedDegree (const PointGraph &graph, int num_threads)
 {
   const std::size_t n = graph.numVertices ();
-  std::vector<double> degree (n, 0.0);
+  std::vector<double> degree;
+  detail::resizeOnHugePages (degree, n);
   detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {

@@ -6,6 +6,7 @@
 #include <pcl_graph_denoise/core/solvers.h>
 
 #include "cholmod_solver.h"
+#include "huge_pages.h"
 #include "parallel.h"
 #include "solver_support.h"
 
@@ -33,7 +34,8 @@ trueResidual (const PointGraph &graph, const Signal3 &f, const Signal3 &x, doubl
               int threads, Signal3 &r)
 {
   const std::size_t n = graph.numVertices ();
-  r.resize (static_cast<Eigen::Index> (n), 3);
+  if (static_cast<std::size_t> (r.rows ()) != n)
+    r = detail::matrixOnHugePages<Signal3> (static_cast<Eigen::Index> (n));
   return std::sqrt (detail::parallelSum<double> (n, threads, [&] (std::size_t begin, std::size_t end) {
     double sum = 0.0;
     for (std::size_t i = begin; i < end; ++i)
@@ -74,7 +76,9 @@ correct (const PointGraph &graph, double g2, const std::vector<double> &degree,
   const Scalar g2s = static_cast<Scalar> (g2);
   // The diagonal and its inverse (the Jacobi preconditioner, applied where it is used
   // rather than stored with r: one array fewer to write and read back per iteration).
-  std::vector<Scalar> diagonal (n), inverse (n);
+  std::vector<Scalar> diagonal, inverse;
+  detail::resizeOnHugePages (diagonal, n);
+  detail::resizeOnHugePages (inverse, n);
   detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {
@@ -82,8 +86,13 @@ correct (const PointGraph &graph, double g2, const std::vector<double> &degree,
       inverse[i] = static_cast<Scalar> (1.0 / (1.0 + g2 * degree[i]));
     }
   });
-  Columns3<Scalar> d = Columns3<Scalar>::Zero (static_cast<Eigen::Index> (n), 3);
-  Columns3<Scalar> r = r0.template cast<Scalar> (), p (n, 3), q (n, 3);
+  const auto rows = static_cast<Eigen::Index> (n);
+  Columns3<Scalar> d = detail::matrixOnHugePages<Columns3<Scalar>> (rows);
+  Columns3<Scalar> r = detail::matrixOnHugePages<Columns3<Scalar>> (rows);
+  Columns3<Scalar> p = detail::matrixOnHugePages<Columns3<Scalar>> (rows);
+  Columns3<Scalar> q = detail::matrixOnHugePages<Columns3<Scalar>> (rows);
+  d.setZero ();
+  r = r0.template cast<Scalar> ();
 
   // q = A p, with the column dot products p . A p.
   auto applyA = [&] () {
@@ -195,7 +204,8 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
   const std::vector<double> degree = weightedDegree (graph, threads);
   const double scale = detail::residualScale (graph, f, threads);
   const double target = params.tolerance * scale;
-  Signal3 x = f, r;
+  Signal3 x = detail::matrixOnHugePages<Signal3> (f.rows ()), r;
+  x = f;
   double residual = trueResidual (graph, f, x, g2, threads, r);
   int it = 0;
   if (residual > target && params.max_iterations > 0)

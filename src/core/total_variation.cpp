@@ -5,6 +5,7 @@
 #include <pcl_graph_denoise/core/operators.h>
 #include <pcl_graph_denoise/core/solvers.h>
 
+#include "huge_pages.h"
 #include "parallel.h"
 #include "solver_support.h"
 
@@ -168,7 +169,8 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
   // smallest tau (with the mean tau instead, the fountain scan's weakly linked pieces
   // diverged). On noisy spheres this halves the iterations at strong smoothing.
   const float bound_gamma = static_cast<float> (gamma);
-  std::vector<float> root_weight (graph.numEntries ());
+  std::vector<float> root_weight;
+  detail::resizeOnHugePages (root_weight, graph.numEntries ());
   for (std::size_t e = 0; e < root_weight.size (); ++e)
     root_weight[e] = std::sqrt (graph.weight[e]);
   std::vector<double> tau = detail::rootDegree (graph);
@@ -190,8 +192,11 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
   // dual ends on the boundary of its ball, along the edge's difference. Starting the
   // duals there for the differences of f (feasible, and odd in (i, j) as required)
   // and the primal at f - grad^T y cuts the iterations several times.
-  Signal3 x (n, 3), xbar (n, 3), gty (n, 3);
-  Duals y (static_cast<Eigen::Index> (graph.numEntries ()), 3);
+  const auto rows = static_cast<Eigen::Index> (n);
+  Signal3 x = detail::matrixOnHugePages<Signal3> (rows);
+  Signal3 xbar = detail::matrixOnHugePages<Signal3> (rows);
+  Signal3 gty = detail::matrixOnHugePages<Signal3> (rows);
+  Duals y = detail::matrixOnHugePages<Duals> (static_cast<Eigen::Index> (graph.numEntries ()));
   const auto warmStart = [&] () {
     detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i)
