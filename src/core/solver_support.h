@@ -24,12 +24,14 @@ namespace detail {
 /** Each vertex's sum of sqrt(w_ij) over its stored entries: the row sums of |grad| of
  *  the total-variation term, behind TV's derived strength and its solver's steps. */
 inline std::vector<double>
-rootDegree (const PointGraph &graph)
+rootDegree (const PointGraph &graph, int num_threads = 0)
 {
   std::vector<double> root_degree (graph.numVertices (), 0.0);
-  for (std::size_t i = 0; i < root_degree.size (); ++i)
-    for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
-      root_degree[i] += std::sqrt (double (graph.weight[e]));
+  parallelFor (root_degree.size (), num_threads, [&] (std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+        root_degree[i] += std::sqrt (double (graph.weight[e]));
+  });
   return root_degree;
 }
 
