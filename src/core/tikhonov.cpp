@@ -249,10 +249,10 @@ solveTikhonov (const PointGraph &graph, const Signal3 &f, double gamma,
     detail::requireSaneResult (x, f, gamma, "Tikhonov (CHOLMOD)");
     out.converged = true;
     out.iterations = 1;
-    Signal3 lx;
-    applyLaplacian (graph, x, lx, params.num_threads);
+    Signal3 r;
+    const double residual = trueResidual (graph, f, x, 2.0 * gamma, params.num_threads, r);
     const double scale = detail::residualScale (graph, f, params.num_threads);
-    out.residual = scale > 0.0 ? (x + 2.0 * gamma * lx - f).norm () / scale : 0.0;
+    out.residual = scale > 0.0 ? residual / scale : 0.0;
     return x;
   }
   Signal3 x = conjugateGradient (graph, f, gamma, params, out);
