@@ -173,6 +173,22 @@ TEST (Tikhonov, ReportsTheResidualOfItsResultInDoublePrecision)
   }
 }
 
+TEST (Tikhonov, ASignalBeyondSinglePrecisionsRangeIsSolvedInDouble)
+{
+  // The solve is linear in f: a signal scaled by 1e38 (finite in single precision, but its
+  // residual is not) gives the scaled solution, from the phase in double precision.
+  const Problem p (5000);
+  const double gamma = 50.0;
+  const double huge = 1e38;
+  SolverReport unit_report, huge_report;
+  const Signal3 unit = solveTikhonov (p.graph, p.f, gamma, {}, &unit_report);
+  const Signal3 scaled = solveTikhonov (p.graph, Signal3 (huge * p.f), gamma, {}, &huge_report);
+  ASSERT_TRUE (scaled.allFinite ());
+  EXPECT_TRUE (unit_report.converged);
+  EXPECT_TRUE (huge_report.converged);
+  EXPECT_LT ((scaled / huge - unit).cwiseAbs ().maxCoeff (), 1e-4);
+}
+
 TEST (Tikhonov, ZeroGammaIsTheIdentityAndTheMeanIsKept)
 {
   const Problem p (2000);

@@ -188,7 +188,10 @@ correct (const PointGraph &graph, double g2, const std::vector<double> &degree,
           p (i, c) = inverse[i] * r (i, c) + beta[c] * p (i, c);
     });
   }
-  x += d.template cast<double> ();
+  // Single precision overflows where the residual passes about 3e38 (a cloud near that
+  // size): its correction is then dropped and the phase in double starts from x itself.
+  if (d.allFinite ())
+    x += d.template cast<double> ();
   return it;
 }
 
