@@ -97,7 +97,7 @@ quadricHeight (const Basis &q, double a, double b)
 }
 
 /** One vertex's local surface: a frame and the height field over it (17 doubles: a
- *  patch is kept for every vertex while the surfaces are blended). */
+ *  patch is kept for every vertex that carries one while the surfaces are blended). */
 struct Patch
 {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero ();
