@@ -33,29 +33,11 @@ double
 trueResidual (const PointGraph &graph, const Signal3 &f, const Signal3 &x, double g2,
               int threads, Signal3 &r)
 {
-  const std::size_t n = graph.numVertices ();
-  if (static_cast<std::size_t> (r.rows ()) != n)
-    r = detail::matrixOnHugePages<Signal3> (static_cast<Eigen::Index> (n));
-  return std::sqrt (detail::parallelSum<double> (n, threads, [&] (std::size_t begin, std::size_t end) {
-    double sum = 0.0;
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      double a[3] = {0.0, 0.0, 0.0};
-      for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
-      {
-        const double w = graph.weight[e];
-        const VertexIndex j = graph.col[e];
-        for (int c = 0; c < 3; ++c)
-          a[c] += w * (x (i, c) - x (j, c));
-      }
-      for (int c = 0; c < 3; ++c)
-      {
-        r (i, c) = f (i, c) - (x (i, c) + g2 * a[c]);
-        sum += r (i, c) * r (i, c);
-      }
-    }
-    return sum;
-  }));
+  if (r.rows () != x.rows ())
+    r = detail::matrixOnHugePages<Signal3> (x.rows ());
+  applyLaplacian (graph, x, r, threads);
+  r = f - x - g2 * r;
+  return detail::frobenius (r, threads);
 }
 
 /** Jacobi-preconditioned conjugate gradient on (I + 2 gamma L) d = r for a correction d,
