@@ -282,6 +282,22 @@ wellConditioned (const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> &ldlt)
   return ldlt.rcond () > 1e-10;
 }
 
+/** The weighted least-squares quadric of `samples` in q; false (q untouched) when too few
+ *  points keep weight for a well-conditioned system, or the solution is not finite. */
+bool
+solveQuadric (const Samples &samples, Basis &q)
+{
+  const QuadricSystem system (samples);
+  const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt (system.matrix ());
+  if (ldlt.info () != Eigen::Success || !wellConditioned (ldlt))
+    return false;
+  const Basis solved = ldlt.solve (system.rhs ());
+  if (!solved.allFinite ())
+    return false;
+  q = solved;
+  return true;
+}
+
 /** Fits vertex i's patch to the points of x over `ring` (its two rings, or three),
  *  robustly with a noise level > 0 (quadricDisplacement). `moments`: vertex i's, holding
  *  the sums of the ring's first points when an earlier fit used them. `samples` receives
@@ -318,7 +334,6 @@ fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i,
     patch.support = std::max (patch.support, samples.a[r] * samples.a[r] + samples.b[r] * samples.b[r]);
   }
   const bool robust = noise > 0.0;
-  Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt;
   // Robust: the first weights come from the plane through x_i (q = 0), so that a point
   // between two sheets starts on its own side.
   for (int iteration = 0; iteration < (robust ? kRobustIterations : 1); ++iteration)
@@ -337,13 +352,9 @@ fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i,
                                            static_cast<Eigen::Index> (samples.count));
       w = w.exp ();
     }
-    const QuadricSystem system (samples);
-    ldlt.compute (system.matrix ());
-    if (ldlt.info () != Eigen::Success || !wellConditioned (ldlt))
+    Basis solved;
+    if (!solveQuadric (samples, solved))
       break;  // too few points keep weight: keep the last fit (or the plane)
-    const Basis solved = ldlt.solve (system.rhs ());
-    if (!solved.allFinite ())
-      break;
     // From the second fit on: settled once it moved the surface by at most kRobustStop
     // noise levels at every point.
     bool settled = robust && iteration > 0;
@@ -360,6 +371,33 @@ fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i,
       break;
   }
   return patch;
+}
+
+/** Whether a wider fit clearly agrees with the narrower ring's points: the least-squares
+ *  quadric of `moves` (the wider surface's height minus each point's, for the first
+ *  `moves.size ()` samples, the narrower ring's) changes their heights by a sum of
+ *  squares of at most `bound`. `scratch` holds those residuals as samples. */
+bool
+residualsWithin (const Samples &samples, const std::vector<double> &moves, double bound,
+                 Samples &scratch)
+{
+  scratch.resize (moves.size ());
+  for (std::size_t r = 0; r < moves.size (); ++r)
+  {
+    scratch.a[r] = samples.a[r];
+    scratch.b[r] = samples.b[r];
+    scratch.h[r] = -moves[r];
+  }
+  Basis c;
+  if (!solveQuadric (scratch, c))
+    return false;
+  double sum = 0.0;
+  for (std::size_t r = 0; r < moves.size (); ++r)
+  {
+    const double d = quadricHeight (c, samples.a[r], samples.b[r]);
+    sum += d * d;
+  }
+  return sum <= bound;
 }
 
 } // namespace
@@ -455,32 +493,13 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
         wide_usable = wide.valid () && samples.count == ring.size ();
         if (wide_usable)
         {
-          residual_samples.resize (narrow_size);
           wide_move.resize (narrow_size);
           for (std::size_t r = 0; r < narrow_size; ++r)
-          {
             wide_move[r] = quadricHeight (wide.q, samples.a[r], samples.b[r]) - samples.h[r];
-            residual_samples.a[r] = samples.a[r];
-            residual_samples.b[r] = samples.b[r];
-            residual_samples.h[r] = -wide_move[r];
-          }
-          const QuadricSystem system (residual_samples);
-          const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt (system.matrix ());
-          if (wide_fitted && ldlt.info () == Eigen::Success && wellConditioned (ldlt))
-          {
-            const Basis c = ldlt.solve (system.rhs ());
-            double sum = 0.0;
-            for (std::size_t r = 0; r < narrow_size; ++r)
-            {
-              const double d = quadricHeight (c, samples.a[r], samples.b[r]);
-              sum += d * d;
-            }
-            if (c.allFinite () && sum <= kClearAgreement * agreement)
-            {
-              patch = wide;
-              done = true;
-            }
-          }
+          done = wide_fitted &&
+                 residualsWithin (samples, wide_move, kClearAgreement * agreement, residual_samples);
+          if (done)
+            patch = wide;
         }
         if (!done)
           ring.resize (narrow_size);
