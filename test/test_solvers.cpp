@@ -4,13 +4,16 @@
  *
  * The Tikhonov and total-variation solvers and the noise estimate, verified against
  * independent references: a full eigendecomposition, CHOLMOD, a second TV method run
- * long, and random perturbations of the minimiser.
+ * long, and random perturbations of the minimiser; and the conjugate gradient's coarse
+ * levels (the core's private AggregationPreconditioner) against dense Galerkin products
+ * and plain Jacobi-preconditioned CG.
  */
 #include <pcl_graph_denoise/core/graph.h>
 #include <pcl_graph_denoise/core/noise_level.h>
 #include <pcl_graph_denoise/core/operators.h>
 #include <pcl_graph_denoise/core/solvers.h>
 
+#include "aggregation.h"
 #include "synthetic.h"
 
 #include <gtest/gtest.h>
@@ -350,6 +353,157 @@ TEST (Tikhonov, NeverReturnsAResultFarOutsideTheInputsBoundingBox)
     ASSERT_TRUE (x.allFinite ()) << "gamma " << gamma;
     EXPECT_LE ((low - x.colwise ().minCoeff ()).maxCoeff (), 1e-3 * side) << "gamma " << gamma;
     EXPECT_LE ((x.colwise ().maxCoeff () - high).maxCoeff (), 1e-3 * side) << "gamma " << gamma;
+  }
+}
+
+/** Jacobi-preconditioned CG in double precision, written out here as the reference the
+ *  solver's coarse levels are measured against: iterations until the residual of
+ *  (I + g2 L) x = f is at most `target`. */
+int
+jacobiIterations (const PointGraph &g, const Signal3 &f, double g2, double target)
+{
+  const std::vector<double> degree = weightedDegree (g);
+  const auto n = static_cast<Eigen::Index> (g.numVertices ());
+  const Eigen::ArrayXd inverse =
+      1.0 / (1.0 + g2 * Eigen::Map<const Eigen::ArrayXd> (degree.data (), n));
+  const auto product = [&] (const Signal3 &v) {
+    Signal3 lv (n, 3);
+    applyLaplacian (g, v, lv);
+    return Signal3 (v + g2 * lv);
+  };
+  Signal3 x = f, r = f - product (f);
+  Signal3 z = inverse.matrix ().asDiagonal () * r, p = z;
+  Eigen::Array3d rz = (r.array () * z.array ()).colwise ().sum ().transpose ();
+  int it = 0;
+  while (r.norm () > target && it < 10000)
+  {
+    const Signal3 q = product (p);
+    for (int c = 0; c < 3; ++c)
+    {
+      const double alpha = rz[c] / p.col (c).dot (q.col (c));
+      x.col (c) += alpha * p.col (c);
+      r.col (c) -= alpha * q.col (c);
+    }
+    z = inverse.matrix ().asDiagonal () * r;
+    for (int c = 0; c < 3; ++c)
+    {
+      const double next = r.col (c).dot (z.col (c));
+      p.col (c) = z.col (c) + (next / rz[c]) * p.col (c);
+      rz[c] = next;
+    }
+    ++it;
+  }
+  return it;
+}
+
+TEST (Tikhonov, CoarseLevelsCutTheIterationsOfJacobiPreconditioning)
+{
+  // At the filters' strengths (2 gamma times the mean degree of a few hundred) Jacobi
+  // alone leaves the smooth directions slowest; the coarse levels take them (here 56
+  // iterations instead of 106, and 95 instead of 250). Both solves are taken to the same
+  // residual, the one the solver stopped at.
+  const Problem p (50000, 0.01);
+  const std::vector<double> degree = weightedDegree (p.graph);
+  double mean_degree = 0.0;
+  for (double d : degree)
+    mean_degree += d / double (degree.size ());
+  for (const double strength : {300.0, 1500.0})
+  {
+    const double gamma = strength / (2.0 * mean_degree);
+    SolverReport report;
+    const Signal3 x = solveTikhonov (p.graph, p.f, gamma, {}, &report);
+    ASSERT_TRUE (report.converged);
+    Signal3 lx (x.rows (), 3);
+    applyLaplacian (p.graph, x, lx);
+    const double reached = (p.f - x - 2.0 * gamma * lx).norm ();
+    const int jacobi = jacobiIterations (p.graph, p.f, 2.0 * gamma, reached);
+    EXPECT_LE (report.iterations, 0.6 * jacobi)
+        << "2 gamma d = " << strength << ": " << report.iterations << " iterations against "
+        << jacobi << " of Jacobi alone";
+  }
+}
+
+namespace aggregation {
+
+using detail::AggregationPreconditioner;
+using Coarse3 = AggregationPreconditioner::Coarse3;
+
+/** The dense prolongation: column a is 1 on the linked vertices of aggregate a. */
+Eigen::MatrixXd
+prolongation (const PointGraph &g, const std::vector<double> &degree)
+{
+  const auto n = static_cast<Eigen::Index> (g.numVertices ());
+  const Eigen::Index block = AggregationPreconditioner::kFirstAggregate;
+  Eigen::MatrixXd p = Eigen::MatrixXd::Zero (n, (n + block - 1) / block);
+  for (Eigen::Index v = 0; v < n; ++v)
+    p (v, v / block) = degree[v] > 0.0 ? 1.0 : 0.0;
+  return p;
+}
+
+} // namespace aggregation
+
+TEST (AggregationPreconditioner, OneCoarseLevelSolvesTheGalerkinSystemExactly)
+{
+  // 1,500 sphere points and one far point (alone: no weight survives): 94 aggregates,
+  // few enough for the dense solve, so the coarse correction is (P^T A P)^-1 rc exactly,
+  // with P constant on each aggregate's linked vertices and zero on the far point.
+  using namespace aggregation;
+  PointMatrix points = toMatrix (synthetic::noisySphere (1500, 1.0, 0.02, 5));
+  points.conservativeResize (1501, 3);
+  points.row (1500) << 1e4f, 0.0f, 0.0f;
+  const PointGraph g = buildKnnGraph (points, KnnGraphParams ());
+  const std::vector<double> degree = weightedDegree (g);
+  ASSERT_EQ (std::count (degree.begin (), degree.end (), 0.0), 1);
+  const double g2 = 40.0;
+  const AggregationPreconditioner pre (g, degree, g2, 2);
+  ASSERT_EQ (pre.coarseSize (), 94u);
+  for (std::size_t v = 0; v < g.numVertices (); ++v)
+    EXPECT_EQ (pre.linked ()[v], degree[v] > 0.0 ? 1 : 0);
+  const Eigen::MatrixXd p = prolongation (g, degree);
+  const auto n = static_cast<Eigen::Index> (g.numVertices ());
+  const Eigen::MatrixXd a = Eigen::MatrixXd::Identity (n, n) + g2 * denseLaplacian (g);
+  // The aggregate of the far point alone would be empty; it shares its aggregate here,
+  // so every column of P has a linked vertex and P^T A P is positive definite.
+  const Eigen::MatrixXd galerkin = p.transpose () * a * p;
+  std::mt19937 rng (7);
+  std::normal_distribution<double> normal;
+  Coarse3 rc (94, 3), zc;
+  for (Eigen::Index i = 0; i < rc.size (); ++i)
+    rc.data ()[i] = normal (rng);
+  pre.applyCoarse (rc, zc);
+  const Eigen::MatrixXd exact = galerkin.ldlt ().solve (Eigen::MatrixXd (rc));
+  EXPECT_LT ((Eigen::MatrixXd (zc) - exact).norm (), 1e-6 * exact.norm ());
+}
+
+TEST (AggregationPreconditioner, TheVCycleIsSymmetricPositiveAndThreadIndependent)
+{
+  // 50,000 points: coarse levels of 3,125, 391 and 49 vertices. The conjugate gradient
+  // needs a symmetric positive definite preconditioner, the same on any thread count.
+  using namespace aggregation;
+  const Problem p (50000, 0.01);
+  const std::vector<double> degree = weightedDegree (p.graph);
+  const AggregationPreconditioner one (p.graph, degree, 100.0, 1), two (p.graph, degree, 100.0, 2);
+  const auto m = static_cast<Eigen::Index> (one.coarseSize ());
+  ASSERT_EQ (m, 3125);
+  std::mt19937 rng (9);
+  std::normal_distribution<double> normal;
+  const auto random = [&] () {
+    Coarse3 r (m, 3);
+    for (Eigen::Index i = 0; i < r.size (); ++i)
+      r.data ()[i] = normal (rng);
+    return r;
+  };
+  for (int trial = 0; trial < 5; ++trial)
+  {
+    const Coarse3 a = random (), b = random ();
+    Coarse3 va, vb, va2;
+    one.applyCoarse (a, va);
+    one.applyCoarse (b, vb);
+    two.applyCoarse (a, va2);
+    EXPECT_TRUE (va == va2) << "thread count changed the V-cycle";
+    const double ab = (va.array () * b.array ()).sum (), ba = (vb.array () * a.array ()).sum ();
+    EXPECT_LT (std::abs (ab - ba), 1e-10 * std::sqrt ((va.squaredNorm ()) * b.squaredNorm ()));
+    EXPECT_GT ((va.array () * a.array ()).sum (), 0.0);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <pcl_graph_denoise/core/operators.h>
 #include <pcl_graph_denoise/core/solvers.h>
 
+#include "aggregation.h"
 #include "cholmod_solver.h"
 #include "huge_pages.h"
 #include "parallel.h"
@@ -12,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace pcl_graph_denoise {
@@ -19,11 +21,26 @@ namespace core {
 
 namespace {
 
+using detail::AggregationPreconditioner;
+
 /** The single-precision phase of the conjugate gradient stops once its residual is this
  *  many times below the one it started from, also when the tolerance lies lower: single
  *  precision takes a residual about that far down whatever the system, and the phase in
  *  double precision, started from its result, takes it the rest of the way. */
 constexpr double kSinglePrecisionReach = 1e-5;
+
+/** Rows per task of the passes that also sum the residual over the preconditioner's
+ *  aggregates: a multiple of the aggregate, so that no aggregate spans two tasks. */
+constexpr std::size_t kRowsPerTask = 4096;
+static_assert (kRowsPerTask % AggregationPreconditioner::kFirstAggregate == 0,
+               "an aggregate must lie within one task");
+
+/** The coarse levels serve a phase in Scalar only where 2 gamma times the largest degree,
+ *  times the Scalar's epsilon, is at most this: the product (1 + 2 gamma d_i) p_i -
+ *  2 gamma sum_j w_ij p_j cancels to about p_i on the smooth directions the coarse levels
+ *  add, and loses that many times p_i to rounding (a single-precision phase thus up to
+ *  2 gamma d of about 1.7e5, far above the filters' defaults; beyond, Jacobi alone). */
+constexpr double kCoarseReach = 1e-2;
 
 template <typename Scalar>
 using Columns3 = Eigen::Matrix<Scalar, Eigen::Dynamic, 3, Eigen::RowMajor>;
@@ -40,9 +57,11 @@ trueResidual (const PointGraph &graph, const Signal3 &f, const Signal3 &x, doubl
   return detail::frobenius (r, threads);
 }
 
-/** Jacobi-preconditioned conjugate gradient on (I + 2 gamma L) d = r for a correction d,
- *  added to x at the end: one scalar step size per column, the three columns fused in
- *  each pass over the graph, the vectors stored in Scalar (single precision halves the
+/** Preconditioned conjugate gradient on (I + 2 gamma L) d = r for a correction d, added
+ *  to x at the end: the preconditioner z = D^-1 r + P V (P^T r), Jacobi plus the coarse
+ *  levels' V-cycle (aggregation.h), whose restriction P^T r is summed in the pass that
+ *  updates r and whose share of r . z is rc . zc on the coarse level; one scalar step
+ *  size per column, the three columns fused in each pass over the graph, the vectors stored in Scalar (single precision halves the
  *  memory traffic that bounds the loop) and every sum accumulated in double. The product
  *  is taken as (1 + 2 gamma d_i) p_i - 2 gamma sum_j w_ij p_j. Stops once the recursive
  *  residual is at most `target` or after `max_iterations`; `done` iterations came before
@@ -50,9 +69,11 @@ trueResidual (const PointGraph &graph, const Signal3 &f, const Signal3 &x, doubl
 template <typename Scalar>
 int
 correct (const PointGraph &graph, double g2, const std::vector<double> &degree,
-         const Signal3 &r0, double target, int max_iterations, int done,
-         const TikhonovParams &params, double scale, Signal3 &x)
+         const AggregationPreconditioner &coarse, const Signal3 &r0, double target,
+         int max_iterations, int done, const TikhonovParams &params, double scale, Signal3 &x)
 {
+  using Coarse3 = AggregationPreconditioner::Coarse3;
+  constexpr std::size_t kAggregate = AggregationPreconditioner::kFirstAggregate;
   const std::size_t n = graph.numVertices ();
   const int threads = params.num_threads;
   const Scalar g2s = static_cast<Scalar> (g2);
@@ -75,6 +96,12 @@ correct (const PointGraph &graph, double g2, const std::vector<double> &degree,
   Columns3<Scalar> q = detail::matrixOnHugePages<Columns3<Scalar>> (rows);
   d.setZero ();
   r = r0.template cast<Scalar> ();
+  Coarse3 rc = Coarse3::Zero (static_cast<Eigen::Index> (coarse.coarseSize ()), 3), zc;
+  const std::vector<std::uint8_t> &linked = coarse.linked ();
+  const double max_degree = *std::max_element (degree.begin (), degree.end ());
+  const bool use_coarse =
+      g2 * max_degree * std::numeric_limits<Scalar>::epsilon () <= kCoarseReach;
+  zc.setZero (rc.rows (), 3);
 
   // q = A p, with the column dot products p . A p.
   auto applyA = [&] () {
@@ -112,25 +139,53 @@ correct (const PointGraph &graph, double g2, const std::vector<double> &degree,
       return *this;
     }
   };
+  // Row i's share of the sums, and of its aggregate's restricted residual (tasks of
+  // kRowsPerTask rows: each aggregate within one).
   const auto sumRow = [&] (std::size_t i, Residual &sums) {
     const double m = inverse[i];
+    const std::size_t a = i / kAggregate;
+    if (i % kAggregate == 0)
+      rc.row (a).setZero ();
     for (int c = 0; c < 3; ++c)
     {
       const double ri = r (i, c);
       sums.rr += ri * ri;
       sums.rz.v[c] += ri * (m * ri);
+      if (linked[i])
+        rc (a, c) += ri;
     }
   };
-  Residual sums = detail::parallelSum<Residual> (n, threads, [&] (std::size_t begin, std::size_t end) {
-    Residual partial;
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      sumRow (i, partial);
-      for (int c = 0; c < 3; ++c)
-        p (i, c) = inverse[i] * r (i, c);
-    }
-    return partial;
-  });
+  // zc from rc, and its share of r . z.
+  const auto coarseCorrection = [&] (detail::Sum3 &rz) {
+    if (!use_coarse)
+      return;
+    coarse.applyCoarse (rc, zc);
+    for (int c = 0; c < 3; ++c)
+      rz.v[c] += rc.col (c).dot (zc.col (c));
+  };
+  // p = D^-1 r + P zc + beta p.
+  const auto updateDirection = [&] (const Scalar *beta) {
+    detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i)
+        for (int c = 0; c < 3; ++c)
+          p (i, c) = inverse[i] * r (i, c) +
+                     (linked[i] ? static_cast<Scalar> (zc (i / kAggregate, c)) : Scalar (0)) +
+                     beta[c] * p (i, c);
+    });
+  };
+  Residual sums = detail::parallelSum<Residual> (
+      n, threads,
+      [&] (std::size_t begin, std::size_t end) {
+        Residual partial;
+        for (std::size_t i = begin; i < end; ++i)
+          sumRow (i, partial);
+        return partial;
+      },
+      kRowsPerTask);
+  coarseCorrection (sums.rz);
+  p.setZero ();
+  const Scalar no_beta[3] = {0, 0, 0};
+  updateDirection (no_beta);
   detail::Sum3 rz = sums.rz;
   double residual = std::sqrt (sums.rr);
   int it = 0;
@@ -141,34 +196,34 @@ correct (const PointGraph &graph, double g2, const std::vector<double> &degree,
     for (int c = 0; c < 3; ++c)
       alpha[c] = static_cast<Scalar> (pq.v[c] > 0.0 ? rz.v[c] / pq.v[c] : 0.0);
     // The step and the new residual's sums in one pass.
-    sums = detail::parallelSum<Residual> (n, threads, [&] (std::size_t begin, std::size_t end) {
-      Residual partial;
-      for (std::size_t i = begin; i < end; ++i)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          d (i, c) += alpha[c] * p (i, c);
-          r (i, c) -= alpha[c] * q (i, c);
-        }
-        sumRow (i, partial);
-      }
-      return partial;
-    });
+    sums = detail::parallelSum<Residual> (
+        n, threads,
+        [&] (std::size_t begin, std::size_t end) {
+          Residual partial;
+          for (std::size_t i = begin; i < end; ++i)
+          {
+            for (int c = 0; c < 3; ++c)
+            {
+              d (i, c) += alpha[c] * p (i, c);
+              r (i, c) -= alpha[c] * q (i, c);
+            }
+            sumRow (i, partial);
+          }
+          return partial;
+        },
+        kRowsPerTask);
     residual = std::sqrt (sums.rr);
     ++it;
     if (params.progress && (done + it) % 10 == 0)
       params.progress (done + it, scale > 0.0 ? residual / scale : 0.0);
     if (residual <= target)
       break;
+    coarseCorrection (sums.rz);
     Scalar beta[3];
     for (int c = 0; c < 3; ++c)
       beta[c] = static_cast<Scalar> (rz.v[c] > 0.0 ? sums.rz.v[c] / rz.v[c] : 0.0);
     rz = sums.rz;
-    detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i)
-        for (int c = 0; c < 3; ++c)
-          p (i, c) = inverse[i] * r (i, c) + beta[c] * p (i, c);
-    });
+    updateDirection (beta);
   }
   // Single precision overflows where the residual passes about 3e38 (a cloud near that
   // size): its correction is then dropped and the phase in double starts from x itself.
@@ -187,6 +242,7 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
   const int threads = params.num_threads;
   const double g2 = 2.0 * gamma;
   const std::vector<double> degree = weightedDegree (graph, threads);
+  const AggregationPreconditioner coarse (graph, degree, g2, threads);
   const double scale = detail::residualScale (graph, f, threads);
   const double target = params.tolerance * scale;
   Signal3 x = detail::matrixOnHugePages<Signal3> (f.rows ()), r;
@@ -195,12 +251,12 @@ conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
   int it = 0;
   if (residual > target && params.max_iterations > 0)
   {
-    it += correct<float> (graph, g2, degree, r, std::max (target, kSinglePrecisionReach * residual),
+    it += correct<float> (graph, g2, degree, coarse, r, std::max (target, kSinglePrecisionReach * residual),
                           params.max_iterations, it, params, scale, x);
     residual = trueResidual (graph, f, x, g2, threads, r);
     if (residual > target && it < params.max_iterations)
     {
-      it += correct<double> (graph, g2, degree, r, target, params.max_iterations - it, it,
+      it += correct<double> (graph, g2, degree, coarse, r, target, params.max_iterations - it, it,
                              params, scale, x);
       residual = trueResidual (graph, f, x, g2, threads, r);
     }

@@ -39,7 +39,9 @@ struct SolverReport
 /** \brief Solvers for the Tikhonov system (I + 2 gamma L) x = f. */
 enum class TikhonovSolver
 {
-  /** Jacobi-preconditioned CG, three columns fused (default), in mixed precision: its
+  /** Preconditioned CG, three columns fused (default): Jacobi plus a V-cycle on coarse
+   *  graphs of aggregated consecutive (spatially ordered) vertices, which about halves
+   *  the iterations of Jacobi alone at the filters' strengths. In mixed precision: its
    *  vectors in single precision first (the loop is bound by memory traffic), then the
    *  residual of the result recomputed in double and, where it is still above the
    *  tolerance, CG in double precision from there. The reported residual is the one of
