@@ -21,8 +21,7 @@ constexpr double kSmoothing = 0.7;
 /** Coarse rows built per task. */
 constexpr std::size_t kRowsPerTask = 4096;
 
-/** A graph level as the coarsening reads it: CSR with each vertex's mass (its number of
- *  the original graph's vertices). */
+/** A graph level as the coarsening reads it: its CSR arrays and vertex count. */
 struct FineView
 {
   const std::uint64_t *row_ptr;
@@ -39,6 +38,16 @@ struct Rows
   std::vector<VertexIndex> col;
   std::vector<double> weight;  ///< summed in double: W_ab and W_ba round to the same float
 };
+
+/** log2 of an aggregate's size: the shift that takes a vertex to its aggregate. */
+constexpr int
+shiftOf (std::size_t aggregate)
+{
+  int shift = 0;
+  while ((std::size_t (1) << shift) < aggregate)
+    ++shift;
+  return shift;
+}
 
 } // namespace
 
@@ -59,9 +68,7 @@ AggregationPreconditioner::AggregationPreconditioner (const PointGraph &graph,
   static_assert ((kFirstAggregate & (kFirstAggregate - 1)) == 0 &&
                      (kAggregate & (kAggregate - 1)) == 0,
                  "aggregates of a power of two vertices (a shift finds a vertex's)");
-  int shift = 0;
-  while ((std::size_t (1) << shift) < kFirstAggregate)
-    ++shift;
+  int shift = shiftOf (kFirstAggregate);
   while (fine.size > 0)
   {
     const std::size_t block = std::size_t (1) << shift;
@@ -129,9 +136,7 @@ AggregationPreconditioner::AggregationPreconditioner (const PointGraph &graph,
     if (n <= kCoarsest)
       break;
     fine = FineView{made.row_ptr.data (), made.col.data (), made.weight.data (), n};
-    shift = 0;
-    while ((std::size_t (1) << shift) < kAggregate)
-      ++shift;
+    shift = shiftOf (kAggregate);
   }
   // Work space, and the coarsest level factorised.
   for (std::size_t l = 0; l + 1 < levels_.size (); ++l)
