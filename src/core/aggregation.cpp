@@ -18,8 +18,11 @@ namespace {
 /** The damping of the Jacobi steps before and after each coarse correction. */
 constexpr double kSmoothing = 0.7;
 
-/** Coarse rows built per task. */
-constexpr std::size_t kRowsPerTask = 4096;
+/** Coarse rows built per task: at least kMinRowsPerTask, and few enough tasks (at most
+ *  kMaxTasks) that their tables of a slot per coarse vertex stay linear in the size. The
+ *  rows come out the same whatever the tasks. */
+constexpr std::size_t kMinRowsPerTask = 4096;
+constexpr std::size_t kMaxTasks = 64;
 
 /** A graph level as the coarsening reads it: its CSR arrays and vertex count. */
 struct FineView
@@ -75,12 +78,13 @@ AggregationPreconditioner::AggregationPreconditioner (const PointGraph &graph,
     const std::size_t n = (fine.size + block - 1) / block;
     Level level;
     // Each task gathers its coarse rows' entries with a slot per coarse vertex.
-    const std::size_t tasks = (n + kRowsPerTask - 1) / kRowsPerTask;
+    const std::size_t per_task = std::max (kMinRowsPerTask, (n + kMaxTasks - 1) / kMaxTasks);
+    const std::size_t tasks = (n + per_task - 1) / per_task;
     std::vector<Rows> rows (tasks);
     parallelFor (
         n, num_threads,
         [&] (std::size_t begin, std::size_t end) {
-          Rows &out = rows[begin / kRowsPerTask];
+          Rows &out = rows[begin / per_task];
           std::vector<std::uint32_t> slot (n, 0);  // 1 + the entry's position in out
           out.count.assign (end - begin, 0);
           for (std::size_t a = begin; a < end; ++a)
@@ -103,7 +107,7 @@ AggregationPreconditioner::AggregationPreconditioner (const PointGraph &graph,
             out.count[a - begin] = static_cast<std::uint32_t> (out.col.size () - first);
           }
         },
-        kRowsPerTask);
+        per_task);
     level.row_ptr.assign (n + 1, 0);
     for (std::size_t t = 0, a = 0; t < tasks; ++t)
       for (std::uint32_t c : rows[t].count)
