@@ -61,11 +61,12 @@ trueResidual (const PointGraph &graph, const Signal3 &f, const Signal3 &x, doubl
  *  to x at the end: the preconditioner z = D^-1 r + P V (P^T r), Jacobi plus the coarse
  *  levels' V-cycle (aggregation.h), whose restriction P^T r is summed in the pass that
  *  updates r and whose share of r . z is rc . zc on the coarse level; one scalar step
- *  size per column, the three columns fused in each pass over the graph, the vectors stored in Scalar (single precision halves the
- *  memory traffic that bounds the loop) and every sum accumulated in double. The product
- *  is taken as (1 + 2 gamma d_i) p_i - 2 gamma sum_j w_ij p_j. Stops once the recursive
- *  residual is at most `target` or after `max_iterations`; `done` iterations came before
- *  (for the progress reports). Returns the iterations run. */
+ *  size per column, the three columns fused in each pass over the graph, the vectors
+ *  stored in Scalar (single precision halves the memory traffic that bounds the loop)
+ *  and every sum accumulated in double. The product is taken as (1 + 2 gamma d_i) p_i -
+ *  2 gamma sum_j w_ij p_j. Stops once the recursive residual is at most `target` or after
+ *  `max_iterations`; `done` iterations came before (for the progress reports). Returns
+ *  the iterations run. */
 template <typename Scalar>
 int
 correct (const PointGraph &graph, double g2, const std::vector<double> &degree,
