@@ -169,19 +169,28 @@ AggregationPreconditioner::AggregationPreconditioner (const PointGraph &graph,
 void
 AggregationPreconditioner::cycle (std::size_t l, const Coarse3 &r, Coarse3 &z) const
 {
-  const Level &level = levels_[l];
   if (l + 1 == levels_.size ())
   {
-    if (coarsest_.info () == Eigen::Success)
-      z = coarsest_.solve (Eigen::MatrixXd (r));
-    else  // not expected (the operator is positive definite): Jacobi instead
-      for (Eigen::Index i = 0; i < r.rows (); ++i)
-        z.row (i) = r.row (i) / level.diagonal[i];
+    // Each row's diagonal exceeds the sum of its other entries by the aggregate's size
+    // (or 1): positive definite, and Cholesky's pivots stay at least about that.
+    z = r;
+    coarsest_.solveInPlace (z);
     return;
   }
+  const Level &level = levels_[l];
   const std::size_t n = level.size ();
   const double g2 = g2_;
   const std::vector<double> &diagonal = level.diagonal;
+  // s = sum_j w_ij u(j, .) over row i's entries.
+  const auto rowSum = [&level] (std::size_t i, double (&s)[3], auto &&u) {
+    for (std::uint64_t e = level.row_ptr[i]; e < level.row_ptr[i + 1]; ++e)
+    {
+      const double w = level.weight[e];
+      const VertexIndex j = level.col[e];
+      for (int c = 0; c < 3; ++c)
+        s[c] += w * u (j, c);
+    }
+  };
   Coarse3 &y = level.z;  // the damped Jacobi step before the coarse correction
   parallelFor (n, num_threads_, [&] (std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
@@ -196,13 +205,7 @@ AggregationPreconditioner::cycle (std::size_t l, const Coarse3 &r, Coarse3 &z) c
       for (std::size_t i = a * kAggregate; i < std::min (n, (a + 1) * kAggregate); ++i)
       {
         double s[3] = {0.0, 0.0, 0.0};
-        for (std::uint64_t e = level.row_ptr[i]; e < level.row_ptr[i + 1]; ++e)
-        {
-          const double w = level.weight[e];
-          const VertexIndex j = level.col[e];
-          for (int c = 0; c < 3; ++c)
-            s[c] += w * y (j, c);
-        }
+        rowSum (i, s, [&y] (VertexIndex j, int c) { return y (j, c); });
         for (int c = 0; c < 3; ++c)
           rc[c] += r (i, c) - diagonal[i] * y (i, c) + g2 * s[c];
       }
@@ -216,18 +219,13 @@ AggregationPreconditioner::cycle (std::size_t l, const Coarse3 &r, Coarse3 &z) c
   parallelFor (n, num_threads_, [&] (std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {
+      const auto u = [&] (std::size_t j, int c) { return y (j, c) + zc (j / kAggregate, c); };
       double s[3] = {0.0, 0.0, 0.0};
-      for (std::uint64_t e = level.row_ptr[i]; e < level.row_ptr[i + 1]; ++e)
-      {
-        const double w = level.weight[e];
-        const VertexIndex j = level.col[e];
-        for (int c = 0; c < 3; ++c)
-          s[c] += w * (y (j, c) + zc (j / kAggregate, c));
-      }
+      rowSum (i, s, u);
       for (int c = 0; c < 3; ++c)
       {
-        const double u = y (i, c) + zc (i / kAggregate, c);
-        z (i, c) = u + (kSmoothing / diagonal[i]) * (r (i, c) - diagonal[i] * u + g2 * s[c]);
+        const double ui = u (i, c);
+        z (i, c) = ui + (kSmoothing / diagonal[i]) * (r (i, c) - diagonal[i] * ui + g2 * s[c]);
       }
     }
   });
