@@ -353,6 +353,33 @@ TEST (TwoRing, KNearestGraphsUpToSixtyNeighboursKeepTheirFullRings)
   }
 }
 
+TEST (TwoRing, TheDirectWindowAndTheHashSetCollectTheSameRings)
+{
+  // Vertices visited out of order, so that the window moves back and forth; windows from
+  // one vertex (every other vertex in the hash set) to the whole graph give the same
+  // rings, in the same order (first met).
+  const PointGraph graph = sheetGraph (3000, 10);
+  const std::size_t n = graph.numVertices ();
+  TwoRing whole;  // the default window covers these 3,000 vertices
+  std::vector<VertexIndex> want, ring;
+  for (const std::size_t window : {std::size_t (1), std::size_t (2), std::size_t (64), std::size_t (1000)})
+  {
+    TwoRing two_ring (window);
+    for (std::size_t step = 0; step < 300; ++step)
+    {
+      const auto v = static_cast<VertexIndex> ((step * 7919) % n);
+      whole.collect (graph, v, want);
+      two_ring.collect (graph, v, ring);
+      ASSERT_EQ (ring, want) << "window " << window << ", vertex " << v;
+      EXPECT_TRUE (sameVertices (ring, within (graph, v, 2))) << "window " << window << ", vertex " << v;
+      ASSERT_TRUE (whole.grow (graph, want));
+      ASSERT_TRUE (two_ring.grow (graph, ring));
+      ASSERT_EQ (ring, want) << "window " << window << ", vertex " << v;
+      EXPECT_TRUE (sameVertices (ring, within (graph, v, 3))) << "window " << window << ", vertex " << v;
+    }
+  }
+}
+
 TEST (TwoRing, ADenseGraphsRingIsTheOneRingAndDoesNotGrow)
 {
   // k = 300 of 1,500 points: a row is below TwoRing::kMaxOneRing, but its two rings
