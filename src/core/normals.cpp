@@ -123,13 +123,18 @@ struct Patch
   inline bool
   valid () const { return support >= 0.0; }
 
-  /** Tangential coordinates of p. */
+  /** Tangential coordinates of p. In scalars: the second axis normal x u built as a
+   *  vector on the stack and read back as a pair stalled the blend's loop (the same
+   *  sums, in the same order, as Eigen's dot and cross products). */
   inline void
   coordinates (const Eigen::Vector3d &p, double &a, double &b) const
   {
-    const Eigen::Vector3d d = p - origin;
-    a = d.dot (u);
-    b = d.dot (normal.cross (u));
+    const double d0 = p[0] - origin[0], d1 = p[1] - origin[1], d2 = p[2] - origin[2];
+    a = (d0 * u[0] + d1 * u[1]) + d2 * u[2];
+    const double v0 = normal[1] * u[2] - normal[2] * u[1];
+    const double v1 = normal[2] * u[0] - normal[0] * u[2];
+    const double v2 = normal[0] * u[1] - normal[1] * u[0];
+    b = (d0 * v0 + d1 * v1) + d2 * v2;
   }
 
   /** The height of the surface above (a, b), pulled back onto the fitted extent when
@@ -332,8 +337,7 @@ fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i,
     patch.coordinates (p, samples.a[r], samples.b[r]);
     samples.h[r] = (p - patch.origin).dot (patch.normal);
     patch.support = std::max (patch.support, samples.a[r] * samples.a[r] + samples.b[r] * samples.b[r]);
-  }
-  const bool robust = noise > 0.0;
+  }  const bool robust = noise > 0.0;
   // Robust: the first weights come from the plane through x_i (q = 0), so that a point
   // between two sheets starts on its own side.
   for (int iteration = 0; iteration < (robust ? kRobustIterations : 1); ++iteration)
