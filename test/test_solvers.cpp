@@ -648,6 +648,49 @@ TEST (TotalVariationSolver, IterationCapIsReported)
   EXPECT_TRUE (x.allFinite ());
 }
 
+TEST (TotalVariationSolver, StopsWithinAnIterationOfMeetingItsTolerance)
+{
+  // The first iteration whose gap meets the tolerance, m: a solve capped at m iterations
+  // checks the gap there. The solve stops at m or m + 1 once it has the rate of two
+  // checks (after 5 and 10 iterations), that is at m + 1 or before when m >= 10 and by
+  // iteration 10 when m < 10 (checks at fixed multiples of 10 stopped up to 9 iterations
+  // later), with its checks at most 10 iterations apart.
+  const Problem p (3000, 0.01);
+  const double gamma = defaultTotalVariationGamma (p.graph, 0.01);
+  for (const double tolerance : {1e-2, 1e-3, 1e-4})
+  {
+    TotalVariationParams params;
+    params.tolerance = tolerance;
+    std::vector<int> checks;
+    params.progress = [&] (int iterations, double) { checks.push_back (iterations); };
+    SolverReport report;
+    solveTotalVariation (p.graph, p.f, gamma, params, &report);
+    ASSERT_TRUE (report.converged);
+    int previous = 0;
+    for (const int check : checks)
+    {
+      EXPECT_GT (check, previous);
+      EXPECT_LE (check - previous, 10);
+      previous = check;
+    }
+    EXPECT_EQ (checks.back (), report.iterations);
+    int first = 0;
+    for (int cap = 1; cap <= report.iterations && first == 0; ++cap)
+    {
+      TotalVariationParams capped;
+      capped.tolerance = tolerance;
+      capped.max_iterations = cap;
+      SolverReport at_cap;
+      solveTotalVariation (p.graph, p.f, gamma, capped, &at_cap);
+      if (at_cap.converged)
+        first = at_cap.iterations;
+    }
+    ASSERT_GT (first, 0) << "tolerance " << tolerance;
+    EXPECT_GE (report.iterations, first) << "tolerance " << tolerance;
+    EXPECT_LE (report.iterations, std::max (first + 1, 10)) << "tolerance " << tolerance;
+  }
+}
+
 TEST (TotalVariationSolver, StrongSmoothingConvergesInFewIterations)
 {
   // The diagonal preconditioning: at 8 times the rule's strength on a noisy sphere the
