@@ -259,7 +259,7 @@ public:
    *  (Tikhonov) or the relative primal-dual gap (TV). Valid: > 0. Until one is set, the
    *  default depends on the pipeline: where the points move onto fitted quadrics (the
    *  default local surface, setLocalSurface) the fit removes what a looser solve leaves,
-   *  and the default is the subclass's looser one (Tikhonov 1e-4, TV 2e-2: on the
+   *  and the default is the subclass's looser one (Tikhonov 5e-4, TV 2e-2: on the
    *  calibration set the same error or less, far fewer iterations on a 1,000,000-point
    *  sphere; docs/evaluation.md); otherwise, for the paper's filters, the solvers' own
    *  (core::TikhonovParams: 1e-5, core::TotalVariationParams: 1e-3). A value set here is
