@@ -14,6 +14,7 @@
 #include <pcl_graph_denoise/core/solvers.h>
 
 #include "aggregation.h"
+#include "wide_kernels.h"
 #include "synthetic.h"
 
 #include <gtest/gtest.h>
@@ -545,11 +546,11 @@ TEST_P (TotalVariation, ReachesTheMinimiserOfASecondMethod)
 
 TEST_P (TotalVariation, RowsLongerThanTheSolversBatchReachTheMinimiser)
 {
-  // k = 40: every row has at least 40 entries, more than the 32 the dual update takes
-  // at once, so every row is updated in two batches.
-  const Problem p (200, 0.02, 3, 40);
+  // k = 70: every row has at least 70 entries, more than the 64 the dual update takes
+  // at once, so every row is updated in two or three batches (which also cross row ends).
+  const Problem p (120, 0.02, 3, 70);
   for (std::size_t i = 0; i < p.graph.numVertices (); ++i)
-    ASSERT_GE (p.graph.row_ptr[i + 1] - p.graph.row_ptr[i], 40u);
+    ASSERT_GE (p.graph.row_ptr[i + 1] - p.graph.row_ptr[i], 70u);
   const double gamma = 0.005;
   TotalVariationParams params;
   params.norm = GetParam ();
@@ -589,6 +590,33 @@ TEST_P (TotalVariation, NoRandomPerturbationLowersTheObjective)
     ASSERT_GE (totalVariationObjective (p.graph, p.f, x + delta, gamma, GetParam ()),
                best * (1.0 - 1e-9));
   }
+}
+
+TEST_P (TotalVariation, TheAvx2BuildOfItsLoopsGivesTheSameBits)
+{
+  // The solver's loops run in an AVX2 build where the processor has it
+  // (src/core/wide_kernels.h); the baseline build must give the same result, bit for bit,
+  // and so must the objective.
+  if (!detail::setWideKernels (true))
+    GTEST_SKIP () << "this processor has no AVX2: only the baseline build runs here";
+  const Problem p (5000, 0.01);
+  TotalVariationParams params;
+  params.norm = GetParam ();
+  params.tolerance = 1e-4;
+  SolverReport wide_report, narrow_report;
+  const Signal3 wide = solveTotalVariation (p.graph, p.f, 0.003, params, &wide_report);
+  const double wide_objective = totalVariationObjective (p.graph, p.f, wide, 0.003, GetParam ());
+  detail::setWideKernels (false);
+  const Signal3 narrow = solveTotalVariation (p.graph, p.f, 0.003, params, &narrow_report);
+  const double narrow_objective =
+      totalVariationObjective (p.graph, p.f, narrow, 0.003, GetParam ());
+  detail::setWideKernels (true);
+  EXPECT_GT (wide_report.iterations, 10);
+  EXPECT_EQ (wide_report.iterations, narrow_report.iterations);
+  EXPECT_EQ (wide_report.residual, narrow_report.residual);
+  EXPECT_TRUE (wide == narrow);
+  EXPECT_EQ (wide_objective, narrow_objective);
+  EXPECT_FALSE (wide == p.f);
 }
 
 INSTANTIATE_TEST_SUITE_P (Norms, TotalVariation,

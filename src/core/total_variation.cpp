@@ -8,6 +8,7 @@
 #include "huge_pages.h"
 #include "parallel.h"
 #include "solver_support.h"
+#include "wide_kernels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -34,42 +35,136 @@ namespace {
  *  entries runs over consecutive floats. */
 using Duals = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::ColMajor>;
 
-/** A row's entries are updated a batch at a time: their differences gathered first,
- *  then the dual step and the projection over the batch as over plain arrays (vectorised:
- *  the file is compiled without errno and trap semantics for it), then the row's adjoint
- *  summed in entry order. */
-constexpr std::size_t kDualBatch = 32;
+/** The entries of a vertex range are updated a batch of consecutive entries at a time
+ *  (across row ends): their differences gathered first, then the dual step, the projection
+ *  and the weighting by sqrt(w) over the batch as over plain arrays (vectorised: the file
+ *  is compiled without errno and trap semantics for it), then each row's adjoint summed
+ *  in entry order. */
+constexpr std::size_t kDualBatch = 64;
 
-/** Dual ascent and projection of `count` consecutive entries, y <- proj(y + step d) onto
- *  the dual ball of radius gamma of the norm (odd in y and d, so antisymmetry holds
- *  exactly). The isotropic shrink factor is computed for every entry and applied where
- *  the ball is left, without a branch; an entry inside keeps its value (times 1). */
-inline void
-dualStep (float *y0, float *y1, float *y2, const float (&d)[3][kDualBatch], std::size_t count,
-          float step, float gamma, TotalVariationNorm norm)
+/** The differences x_i - x_j of the `count` entries from `first` on (x row-major n x 3),
+ *  into d, as T; `row` and `row_end` follow the row of the entry (start them at the
+ *  range's first row and its end). */
+template <typename T>
+PCL_GRAPH_DENOISE_KERNEL inline void
+gatherDifferences (const std::uint64_t *row_ptr, const VertexIndex *col, const double *x,
+                   std::uint64_t first, std::size_t count, std::size_t &row,
+                   std::uint64_t &row_end, T (&d)[3][kDualBatch])
 {
-  if (norm == TotalVariationNorm::ISOTROPIC)
+  const double *xi = x + 3 * row;
+  for (std::size_t t = 0; t < count; ++t)
   {
-    const float gamma2 = gamma * gamma;
+    while (first + t >= row_end)
+    {
+      row_end = row_ptr[++row + 1];
+      xi = x + 3 * row;
+    }
+    const double *xj = x + 3 * std::size_t (col[first + t]);
+    d[0][t] = static_cast<T> (xi[0] - xj[0]);
+    d[1][t] = static_cast<T> (xi[1] - xj[1]);
+    d[2][t] = static_cast<T> (xi[2] - xj[2]);
+  }
+}
+
+/** What one dual pass reads and writes, as plain arrays (row-major n x 3 for the
+ *  vertex signals, one array per coordinate for the duals). */
+struct DualPass
+{
+  const std::uint64_t *row_ptr;
+  const VertexIndex *col;
+  const float *root_weight;
+  const double *xbar;
+  float *y[3];
+  double *gty;
+  float step, gamma;
+  TotalVariationNorm norm;
+};
+
+/** The dual pass over the rows [begin, end): y <- proj(y + step grad xbar) onto the dual
+ *  ball of radius gamma of the norm (odd in y and the difference, so antisymmetry holds
+ *  exactly), then gty = grad^T y. The isotropic shrink factor is computed for every entry
+ *  and applied where the ball is left, without a branch; an entry inside keeps its value
+ *  (times 1). The duals and the entries' terms sqrt(w) y are single precision (the edge
+ *  differences are small numbers of similar size); a row's sum is accumulated in double,
+ *  in entry order. A kernel (wide_kernels.h): each iteration runs it through
+ *  detail::wide. */
+PCL_GRAPH_DENOISE_KERNEL inline void
+dualPass (const DualPass &p, std::size_t begin, std::size_t end)
+{
+  float d[3][kDualBatch];
+  const std::uint64_t last = p.row_ptr[end];
+  // The gather's row and the sums' row (with their ends).
+  std::size_t row = begin, sum_row = begin;
+  std::uint64_t row_end = p.row_ptr[begin + 1], sum_end = row_end;
+  double acc0 = 0.0, acc1 = 0.0, acc2 = 0.0;
+  for (std::uint64_t first = p.row_ptr[begin]; first < last; first += kDualBatch)
+  {
+    const std::size_t count =
+        static_cast<std::size_t> (std::min<std::uint64_t> (kDualBatch, last - first));
+    gatherDifferences (p.row_ptr, p.col, p.xbar, first, count, row, row_end, d);
+    float *__restrict y0 = p.y[0] + first;
+    float *__restrict y1 = p.y[1] + first;
+    float *__restrict y2 = p.y[2] + first;
+    const float *__restrict w = p.root_weight + first;
+    float *__restrict d0 = d[0];
+    float *__restrict d1 = d[1];
+    float *__restrict d2 = d[2];
+    const float step = p.step, gamma = p.gamma;
+    if (p.norm == TotalVariationNorm::ISOTROPIC)
+    {
+      const float gamma2 = gamma * gamma;
+      for (std::size_t t = 0; t < count; ++t)
+      {
+        const float v0 = y0[t] + step * d0[t];
+        const float v1 = y1[t] + step * d1[t];
+        const float v2 = y2[t] + step * d2[t];
+        const float squared = v0 * v0 + v1 * v1 + v2 * v2;
+        const float shrink = gamma / std::sqrt (squared);
+        const float scale = squared > gamma2 ? shrink : 1.0f;
+        y0[t] = v0 * scale;
+        y1[t] = v1 * scale;
+        y2[t] = v2 * scale;
+        d0[t] = w[t] * y0[t];
+        d1[t] = w[t] * y1[t];
+        d2[t] = w[t] * y2[t];
+      }
+    }
+    else
+    {
+      for (std::size_t t = 0; t < count; ++t)
+      {
+        y0[t] = std::max (-gamma, std::min (gamma, y0[t] + step * d0[t]));
+        y1[t] = std::max (-gamma, std::min (gamma, y1[t] + step * d1[t]));
+        y2[t] = std::max (-gamma, std::min (gamma, y2[t] + step * d2[t]));
+        d0[t] = w[t] * y0[t];
+        d1[t] = w[t] * y1[t];
+        d2[t] = w[t] * y2[t];
+      }
+    }
     for (std::size_t t = 0; t < count; ++t)
     {
-      const float v0 = y0[t] + step * d[0][t];
-      const float v1 = y1[t] + step * d[1][t];
-      const float v2 = y2[t] + step * d[2][t];
-      const float squared = v0 * v0 + v1 * v1 + v2 * v2;
-      const float shrink = gamma / std::sqrt (squared);
-      const float scale = squared > gamma2 ? shrink : 1.0f;
-      y0[t] = v0 * scale;
-      y1[t] = v1 * scale;
-      y2[t] = v2 * scale;
+      while (first + t >= sum_end)
+      {
+        double *g = p.gty + 3 * sum_row;
+        g[0] = acc0;
+        g[1] = acc1;
+        g[2] = acc2;
+        acc0 = acc1 = acc2 = 0.0;
+        sum_end = p.row_ptr[++sum_row + 1];
+      }
+      acc0 += double (d0[t]);
+      acc1 += double (d1[t]);
+      acc2 += double (d2[t]);
     }
   }
-  else
+  // The last row with entries, and the rows without any after it.
+  for (; sum_row < end; ++sum_row)
   {
-    float *y[3] = {y0, y1, y2};
-    for (int c = 0; c < 3; ++c)
-      for (std::size_t t = 0; t < count; ++t)
-        y[c][t] = std::max (-gamma, std::min (gamma, y[c][t] + step * d[c][t]));
+    double *g = p.gty + 3 * sum_row;
+    g[0] = acc0;
+    g[1] = acc1;
+    g[2] = acc2;
+    acc0 = acc1 = acc2 = 0.0;
   }
 }
 
@@ -80,45 +175,41 @@ double
 totalVariation (const PointGraph &graph, const Signal3 &x, TotalVariationNorm norm,
                 int num_threads)
 {
+  const double *points = x.data ();
+  const auto kernel = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
+    double sum = 0.0;
+    double d[3][kDualBatch], length[kDualBatch];
+    std::size_t i = begin;
+    std::uint64_t row_end = graph.row_ptr[begin + 1];
+    const std::uint64_t last = graph.row_ptr[end];
+    for (std::uint64_t first = graph.row_ptr[begin]; first < last; first += kDualBatch)
+    {
+      const std::size_t count =
+          static_cast<std::size_t> (std::min<std::uint64_t> (kDualBatch, last - first));
+      gatherDifferences (graph.row_ptr.data (), graph.col.data (), points, first, count, i,
+                         row_end, d);
+      const float *weight = graph.weight.data () + first;
+      if (norm == TotalVariationNorm::ISOTROPIC)
+        for (std::size_t t = 0; t < count; ++t)
+        {
+          const double s = std::sqrt (double (weight[t]));
+          const double d0 = s * d[0][t], d1 = s * d[1][t], d2 = s * d[2][t];
+          length[t] = std::sqrt (d0 * d0 + d1 * d1 + d2 * d2);
+        }
+      else
+        for (std::size_t t = 0; t < count; ++t)
+        {
+          const double s = std::sqrt (double (weight[t]));
+          length[t] = std::abs (s * d[0][t]) + std::abs (s * d[1][t]) + std::abs (s * d[2][t]);
+        }
+      for (std::size_t t = 0; t < count; ++t)
+        sum += length[t];
+    }
+    return sum;
+  };
   return 0.5 * detail::parallelSum<double> (
-                   graph.numVertices (), num_threads, [&] (std::size_t begin, std::size_t end) {
-                     double sum = 0.0;
-                     double d[3][kDualBatch], length[kDualBatch];
-                     std::size_t i = begin;
-                     const std::uint64_t last = graph.row_ptr[end];
-                     for (std::uint64_t first = graph.row_ptr[begin]; first < last;
-                          first += kDualBatch)
-                     {
-                       const std::size_t count = static_cast<std::size_t> (
-                           std::min<std::uint64_t> (kDualBatch, last - first));
-                       for (std::size_t t = 0; t < count; ++t)
-                       {
-                         while (first + t >= graph.row_ptr[i + 1])
-                           ++i;
-                         const VertexIndex j = graph.col[first + t];
-                         for (int c = 0; c < 3; ++c)
-                           d[c][t] = x (i, c) - x (j, c);
-                       }
-                       const float *weight = graph.weight.data () + first;
-                       if (norm == TotalVariationNorm::ISOTROPIC)
-                         for (std::size_t t = 0; t < count; ++t)
-                         {
-                           const double s = std::sqrt (double (weight[t]));
-                           const double d0 = s * d[0][t], d1 = s * d[1][t], d2 = s * d[2][t];
-                           length[t] = std::sqrt (d0 * d0 + d1 * d1 + d2 * d2);
-                         }
-                       else
-                         for (std::size_t t = 0; t < count; ++t)
-                         {
-                           const double s = std::sqrt (double (weight[t]));
-                           length[t] = std::abs (s * d[0][t]) + std::abs (s * d[1][t]) +
-                                       std::abs (s * d[2][t]);
-                         }
-                       for (std::size_t t = 0; t < count; ++t)
-                         sum += length[t];
-                     }
-                     return sum;
-                   });
+                   graph.numVertices (), num_threads,
+                   [&] (std::size_t begin, std::size_t end) { return detail::wide (kernel, begin, end); });
 }
 
 } // namespace
@@ -199,36 +290,48 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
   Signal3 xbar = detail::matrixOnHugePages<Signal3> (rows);
   Signal3 gty = detail::matrixOnHugePages<Signal3> (rows);
   Duals y = detail::matrixOnHugePages<Duals> (static_cast<Eigen::Index> (graph.numEntries ()));
-  const auto warmStart = [&] () {
-    detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i)
+  // f's total variation comes with the warm start (the cold start's objective), summed
+  // over the same entries.
+  const auto warm_kernel = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
+    double variation = 0.0;
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      double acc[3] = {0.0, 0.0, 0.0};
+      for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
       {
-        double acc[3] = {0.0, 0.0, 0.0};
-        for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+        const VertexIndex j = graph.col[e];
+        const double d[3] = {f (i, 0) - f (j, 0), f (i, 1) - f (j, 1), f (i, 2) - f (j, 2)};
+        const double length = std::sqrt (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        float v[3];
+        for (int c = 0; c < 3; ++c)
         {
-          const VertexIndex j = graph.col[e];
-          const double d[3] = {f (i, 0) - f (j, 0), f (i, 1) - f (j, 1), f (i, 2) - f (j, 2)};
-          const double length = std::sqrt (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-          float v[3];
-          for (int c = 0; c < 3; ++c)
-          {
-            if (params.norm == TotalVariationNorm::ISOTROPIC)
-              v[c] = length > 0.0 ? static_cast<float> (gamma * d[c] / length) : 0.0f;
-            else
-              v[c] = d[c] > 0.0 ? bound_gamma : (d[c] < 0.0 ? -bound_gamma : 0.0f);
-          }
-          for (int c = 0; c < 3; ++c)
-          {
-            y (e, c) = v[c];
-            acc[c] += double (root_weight[e]) * double (v[c]);
-          }
+          if (params.norm == TotalVariationNorm::ISOTROPIC)
+            v[c] = length > 0.0 ? static_cast<float> (gamma * d[c] / length) : 0.0f;
+          else
+            v[c] = d[c] > 0.0 ? bound_gamma : (d[c] < 0.0 ? -bound_gamma : 0.0f);
         }
         for (int c = 0; c < 3; ++c)
-          x (i, c) = xbar (i, c) = f (i, c) - acc[c];
+        {
+          y (e, c) = v[c];
+          acc[c] += double (root_weight[e]) * double (v[c]);
+        }
+        variation += double (root_weight[e]) *
+                     (params.norm == TotalVariationNorm::ISOTROPIC
+                          ? length
+                          : std::abs (d[0]) + std::abs (d[1]) + std::abs (d[2]));
       }
-    });
+      for (int c = 0; c < 3; ++c)
+        x (i, c) = xbar (i, c) = f (i, c) - acc[c];
+    }
+    return variation;
   };
-  warmStart ();
+  // Sets the warm start; returns TV(f).
+  const auto warmStart = [&] () {
+    return 0.5 * detail::parallelSum<double> (n, threads, [&] (std::size_t begin, std::size_t end) {
+             return detail::wide (warm_kernel, begin, end);
+           });
+  };
+  const double f_variation = warmStart ();
   // With a gamma large against the cloud's differences the minimiser is nearly constant
   // and that start lies far from it (about gamma times the degree): then the cold start,
   // duals 0 and x = f, when the warm start's objective is more than kColdStart times
@@ -237,7 +340,7 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
   constexpr double kColdStart = 100.0;
   const double warm_objective =
       0.5 * (x - f).squaredNorm () + gamma * totalVariation (graph, x, params.norm, threads);
-  const double cold_objective = gamma * totalVariation (graph, f, params.norm, threads);
+  const double cold_objective = gamma * f_variation;
   const bool warm = warm_objective <= kColdStart * cold_objective;
   if (!warm)
   {
@@ -261,50 +364,39 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
   double last_objective = start_objective;  // the primal objective at the last check
   while (it < params.max_iterations)
   {
-    // Dual ascent with projection, then the adjoint of each row, fused per row. The
-    // dual is stored and updated in single precision (the edge differences are small
-    // numbers of similar size); sums over a row are accumulated in double.
-    const float step = static_cast<float> (0.5 / scale);
+    // Dual ascent with projection, then the adjoint of each row (dualRange).
+    const DualPass pass{graph.row_ptr.data (), graph.col.data (), root_weight.data (),
+                        xbar.data (),        {y.col (0).data (), y.col (1).data (), y.col (2).data ()},
+                        gty.data (),         static_cast<float> (0.5 / scale), bound_gamma,
+                        params.norm};
+    const auto dual = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
+      dualPass (pass, begin, end);
+    };
     detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
-      float d[3][kDualBatch];
-      for (std::size_t i = begin; i < end; ++i)
-      {
-        double acc[3] = {0.0, 0.0, 0.0};
-        for (std::uint64_t first = graph.row_ptr[i]; first < graph.row_ptr[i + 1];
-             first += kDualBatch)
-        {
-          const std::size_t count = static_cast<std::size_t> (
-              std::min<std::uint64_t> (kDualBatch, graph.row_ptr[i + 1] - first));
-          for (std::size_t t = 0; t < count; ++t)
-          {
-            const VertexIndex j = graph.col[first + t];
-            for (int c = 0; c < 3; ++c)
-              d[c][t] = static_cast<float> (xbar (i, c) - xbar (j, c));
-          }
-          const auto e = static_cast<Eigen::Index> (first);
-          dualStep (&y (e, 0), &y (e, 1), &y (e, 2), d, count, step, bound_gamma, params.norm);
-          for (std::size_t t = 0; t < count; ++t)
-            for (int c = 0; c < 3; ++c)
-              acc[c] += double (root_weight[first + t]) * double (y (e + t, c));
-        }
-        for (int c = 0; c < 3; ++c)
-          gty (i, c) = acc[c];
-      }
+      detail::wide (dual, begin, end);
     });
     // Primal step: prox of 1/2 |x - f|^2, then the accelerated extrapolation.
     const double theta = 1.0 / std::sqrt (1.0 + 2.0 * scale * min_tau);
-    detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
+    const auto primal_step = [&, scale] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
+      double *__restrict xs = x.data ();
+      double *__restrict xbars = xbar.data ();
+      const double *__restrict fs = f.data ();
+      const double *__restrict gtys = gty.data ();
+      const double *__restrict taus = tau.data ();
       for (std::size_t i = begin; i < end; ++i)
       {
-        const double step_i = scale * tau[i];
-        for (int c = 0; c < 3; ++c)
+        const double step_i = scale * taus[i];
+        for (std::size_t c = 3 * i; c < 3 * i + 3; ++c)
         {
-          const double previous = x (i, c);
-          const double next = (previous - step_i * gty (i, c) + step_i * f (i, c)) / (1.0 + step_i);
-          x (i, c) = next;
-          xbar (i, c) = next + theta * (next - previous);
+          const double previous = xs[c];
+          const double next = (previous - step_i * gtys[c] + step_i * fs[c]) / (1.0 + step_i);
+          xs[c] = next;
+          xbars[c] = next + theta * (next - previous);
         }
       }
+    };
+    detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
+      detail::wide (primal_step, begin, end);
     });
     scale *= theta;
     ++it;
