@@ -12,14 +12,16 @@
  * sphere and the cube.
  *
  *   calibrate_gamma [--data DIR] [--only NAME,NAME] [--sizes N,N] [--two-ring] [--no-risk]
- *                   [--default-only]
+ *                   [--no-twicing] [--default-only | --multiples M,M]
  *   calibrate_gamma --noise-table
  *
  * --only: the shapes whose names contain one of the names; --sizes: of 10000, 20000, 50000
  * (the seeds stay those of the full run); --two-ring: the filters with
- * setAdaptiveSupport (false); --no-risk: without the risk estimate's runs (its figures
- * then read nan); --default-only: no sweep, each cloud at the default gamma only, and the
- * set's geometric mean error per filter (to compare two builds or settings).
+ * setAdaptiveSupport (false); --no-twicing: with setShrinkageCorrection (false); --no-risk:
+ * without the risk estimate's runs (its figures then read nan); --default-only: no sweep,
+ * each cloud at the default gamma only, and the set's geometric mean error per filter (to
+ * compare two builds or settings); --multiples: the sweep over these multiples only (1
+ * among them), with the set's geometric mean error at each.
  *
  * For every cloud, both filters run at multiples m (1/4 to 16, steps of sqrt 2) of the
  * current default gamma (a "raw" line per cloud and filter: filter, shape, points, true
@@ -38,10 +40,13 @@
 #include "mesh_metrics.h"
 #include "synthetic.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <sstream>
+#include <string>
 #include <vector>
 
 using namespace pcl_graph_denoise;
@@ -67,6 +72,7 @@ std::vector<double> multiples = {0.25, 0.354, 0.5, 0.707, 1.0, 1.414, 2.0,
 std::size_t default_index = 4;
 
 bool adaptive_support = true;   // not --two-ring
+bool twicing = true;            // not --no-twicing
 bool with_risk = true;          // not --no-risk
 
 /** core::estimateNoise on `cloud` over the default k-NN graph, as the filters read it. */
@@ -99,6 +105,7 @@ sweep (const Cloud::Ptr &cloud, const std::function<double (const Cloud &)> &err
   Filter filter;
   filter.setInputCloud (cloud);
   filter.setAdaptiveSupport (adaptive_support);
+  filter.setShrinkageCorrection (twicing);
   Cloud out;
   filter.filter (out);
   const double at_default = error (out);  // the run at m = 1
@@ -187,7 +194,8 @@ main (int argc, char **argv)
   std::string only;  // comma-separated substrings of the shape names to run
   std::string sizes = ",10000,20000,50000,";
   const char *usage = "usage: %s [--data DIR] [--only NAME,NAME] [--sizes N,N] [--two-ring] "
-                      "[--no-risk] [--default-only] | --noise-table\n";
+                      "[--no-risk] [--no-twicing] [--default-only | --multiples M,M] | "
+                      "--noise-table\n";
   for (int a = 1; a < argc; ++a)
   {
     const bool has_value = a + 1 < argc;
@@ -195,8 +203,24 @@ main (int argc, char **argv)
       adaptive_support = false;
     else if (!std::strcmp (argv[a], "--no-risk"))
       with_risk = false;
+    else if (!std::strcmp (argv[a], "--no-twicing"))
+      twicing = false;
     else if (!std::strcmp (argv[a], "--default-only"))
       multiples = {1.0}, default_index = 0;
+    else if (has_value && !std::strcmp (argv[a], "--multiples"))
+    {
+      multiples.clear ();
+      std::stringstream list (argv[++a]);
+      for (std::string item; std::getline (list, item, ',');)
+        multiples.push_back (std::atof (item.c_str ()));
+      const auto one = std::find (multiples.begin (), multiples.end (), 1.0);
+      if (one == multiples.end ())
+      {
+        std::fprintf (stderr, "error: --multiples must include 1\n");
+        return 2;
+      }
+      default_index = static_cast<std::size_t> (one - multiples.begin ());
+    }
     else if (has_value && !std::strcmp (argv[a], "--data"))
       data = argv[++a];
     else if (has_value && !std::strcmp (argv[a], "--only"))
@@ -301,6 +325,21 @@ main (int argc, char **argv)
     }
     return 0;
   }
+  // The set's geometric mean error at each multiple (a constant change of the rule).
+  for (int which = 0; which < 2; ++which)
+  {
+    const auto &samples = which == 0 ? tikhonov : tv;
+    std::printf ("%s: geometric mean error over %zu clouds at each multiple:", which == 0 ? "Tikhonov" : "TV",
+                 samples.size ());
+    for (std::size_t k = 0; k < multiples.size (); ++k)
+    {
+      double log_error = 0.0;
+      for (const Sample &sample : samples)
+        log_error += std::log (sample.error[k]);
+      std::printf (" %g %.6g", multiples[k], std::exp (log_error / double (samples.size ())));
+    }
+    std::printf ("\n");
+  }
   for (int which = 0; which < 2; ++which)
   {
     const auto &samples = which == 0 ? tikhonov : tv;
@@ -315,6 +354,7 @@ main (int argc, char **argv)
         GraphTikhonovSmoothing<pcl::PointXYZ> f;
         f.setInputCloud (clouds[i]);
         f.setAdaptiveSupport (adaptive_support);
+        f.setShrinkageCorrection (twicing);
         f.setGamma (m * samples[i].gamma);
         f.filter (out);
       }
@@ -323,6 +363,7 @@ main (int argc, char **argv)
         GraphTVSmoothing<pcl::PointXYZ> f;
         f.setInputCloud (clouds[i]);
         f.setAdaptiveSupport (adaptive_support);
+        f.setShrinkageCorrection (twicing);
         f.setGamma (m * samples[i].gamma);
         f.filter (out);
       }
