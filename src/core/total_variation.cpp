@@ -66,6 +66,31 @@ gatherDifferences (const std::uint64_t *row_ptr, const VertexIndex *col, const d
   }
 }
 
+/** `sum` plus, in entry order, the `count` entries' norms of sqrt(w) d (d = x_i - x_j,
+ *  `weight` the entries' w): their part of 2 TV(x). */
+PCL_GRAPH_DENOISE_KERNEL inline double
+batchVariation (const double (&d)[3][kDualBatch], const float *weight, std::size_t count,
+                TotalVariationNorm norm, double sum)
+{
+  double length[kDualBatch];
+  if (norm == TotalVariationNorm::ISOTROPIC)
+    for (std::size_t t = 0; t < count; ++t)
+    {
+      const double s = std::sqrt (double (weight[t]));
+      const double d0 = s * d[0][t], d1 = s * d[1][t], d2 = s * d[2][t];
+      length[t] = std::sqrt (d0 * d0 + d1 * d1 + d2 * d2);
+    }
+  else
+    for (std::size_t t = 0; t < count; ++t)
+    {
+      const double s = std::sqrt (double (weight[t]));
+      length[t] = std::abs (s * d[0][t]) + std::abs (s * d[1][t]) + std::abs (s * d[2][t]);
+    }
+  for (std::size_t t = 0; t < count; ++t)
+    sum += length[t];
+  return sum;
+}
+
 /** What one dual pass reads and writes, as plain arrays (row-major n x 3 for the
  *  vertex signals, one array per coordinate for the duals). */
 struct DualPass
@@ -78,6 +103,10 @@ struct DualPass
   double *gty;
   float step, gamma;
   TotalVariationNorm norm;
+  /** When not null, the pass also sums the entries' part of TV(x) (a gap check's, the
+   *  iteration before: x is still that iterate), with the graph's weights. */
+  const double *x;
+  const float *weight;
 };
 
 /** The dual pass over the rows [begin, end): y <- proj(y + step grad xbar) onto the dual
@@ -86,21 +115,29 @@ struct DualPass
  *  and applied where the ball is left, without a branch; an entry inside keeps its value
  *  (times 1). The duals and the entries' terms sqrt(w) y are single precision (the edge
  *  differences are small numbers of similar size); a row's sum is accumulated in double,
- *  in entry order. A kernel (wide_kernels.h): each iteration runs it through
- *  detail::wide. */
-PCL_GRAPH_DENOISE_KERNEL inline void
+ *  in entry order. With p.x, returns the sum of the entries' norms of sqrt(w) (x_i - x_j)
+ *  over [begin, end) as totalVariation sums a block (2 TV(x) over the blocks); else 0. A
+ *  kernel (wide_kernels.h): each iteration runs it through detail::wide. */
+PCL_GRAPH_DENOISE_KERNEL inline double
 dualPass (const DualPass &p, std::size_t begin, std::size_t end)
 {
   float d[3][kDualBatch];
+  double dx[3][kDualBatch];
+  double variation = 0.0;
   const std::uint64_t last = p.row_ptr[end];
-  // The gather's row and the sums' row (with their ends).
-  std::size_t row = begin, sum_row = begin;
-  std::uint64_t row_end = p.row_ptr[begin + 1], sum_end = row_end;
+  // The gathers' rows and the sums' row (with their ends).
+  std::size_t row = begin, x_row = begin, sum_row = begin;
+  std::uint64_t row_end = p.row_ptr[begin + 1], x_row_end = row_end, sum_end = row_end;
   double acc0 = 0.0, acc1 = 0.0, acc2 = 0.0;
   for (std::uint64_t first = p.row_ptr[begin]; first < last; first += kDualBatch)
   {
     const std::size_t count =
         static_cast<std::size_t> (std::min<std::uint64_t> (kDualBatch, last - first));
+    if (p.x)
+    {
+      gatherDifferences (p.row_ptr, p.col, p.x, first, count, x_row, x_row_end, dx);
+      variation = batchVariation (dx, p.weight + first, count, p.norm, variation);
+    }
     gatherDifferences (p.row_ptr, p.col, p.xbar, first, count, row, row_end, d);
     float *__restrict y0 = p.y[0] + first;
     float *__restrict y1 = p.y[1] + first;
@@ -166,6 +203,7 @@ dualPass (const DualPass &p, std::size_t begin, std::size_t end)
     g[2] = acc2;
     acc0 = acc1 = acc2 = 0.0;
   }
+  return variation;
 }
 
 /** TV(x) = 1/2 sum over stored entries of the norm of sqrt(w) (x_i - x_j). A block's
@@ -178,7 +216,7 @@ totalVariation (const PointGraph &graph, const Signal3 &x, TotalVariationNorm no
   const double *points = x.data ();
   const auto kernel = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
     double sum = 0.0;
-    double d[3][kDualBatch], length[kDualBatch];
+    double d[3][kDualBatch];
     std::size_t i = begin;
     std::uint64_t row_end = graph.row_ptr[begin + 1];
     const std::uint64_t last = graph.row_ptr[end];
@@ -188,22 +226,7 @@ totalVariation (const PointGraph &graph, const Signal3 &x, TotalVariationNorm no
           static_cast<std::size_t> (std::min<std::uint64_t> (kDualBatch, last - first));
       gatherDifferences (graph.row_ptr.data (), graph.col.data (), points, first, count, i,
                          row_end, d);
-      const float *weight = graph.weight.data () + first;
-      if (norm == TotalVariationNorm::ISOTROPIC)
-        for (std::size_t t = 0; t < count; ++t)
-        {
-          const double s = std::sqrt (double (weight[t]));
-          const double d0 = s * d[0][t], d1 = s * d[1][t], d2 = s * d[2][t];
-          length[t] = std::sqrt (d0 * d0 + d1 * d1 + d2 * d2);
-        }
-      else
-        for (std::size_t t = 0; t < count; ++t)
-        {
-          const double s = std::sqrt (double (weight[t]));
-          length[t] = std::abs (s * d[0][t]) + std::abs (s * d[1][t]) + std::abs (s * d[2][t]);
-        }
-      for (std::size_t t = 0; t < count; ++t)
-        sum += length[t];
+      sum = batchVariation (d, graph.weight.data () + first, count, norm, sum);
     }
     return sum;
   };
@@ -360,21 +383,82 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
   int next_check = kFirstChecks, last_check = 0;
   double last_residual = std::numeric_limits<double>::infinity ();
   int it = 0;
-  double gap = std::numeric_limits<double>::infinity ();
   double last_objective = start_objective;  // the primal objective at the last check
+  // |x - f|^2, <f, grad^T y> and |grad^T y|^2 of a check, and TV(x) to come.
+  struct Terms
+  {
+    double data = 0.0, cross = 0.0, adjoint = 0.0;
+    Terms &
+    operator+= (const Terms &o)
+    {
+      data += o.data;
+      cross += o.cross;
+      adjoint += o.adjoint;
+      return *this;
+    }
+  };
+  Terms terms;
+  bool pending = false;  // a check whose TV(x) the next dual pass sums
+  // The duality gap of the check at iteration `it`: P(x) - D(y), with
+  // D(y) = <f, grad^T y> - 1/2 |grad^T y|^2 (y is feasible after the projection). True
+  // when it meets the tolerance; else schedules the next check.
+  const auto gapMet = [&] (double variation) {
+    const double primal = 0.5 * terms.data + gamma * variation;
+    last_objective = primal;
+    const double gap = primal - (terms.cross - 0.5 * terms.adjoint);
+    // The floor: with a gamma so small that the objective is below the rounding of x
+    // in double, the gap measures only that rounding and never meets the tolerance.
+    // Stopping there leaves x within sqrt(2 tolerance) 1e-10 |f| of the minimiser
+    // (the objective is 1-strongly convex): nothing a float output can show.
+    const double objective_scale = std::max (primal, 1e-20 * f_norm2);
+    out.residual = gap / objective_scale;
+    if (params.progress)
+      params.progress (it, out.residual);
+    if (gap <= params.tolerance * objective_scale)
+      return true;
+    int interval = last_check > 0 ? kCheckInterval : kFirstChecks;
+    if (last_check > 0 && out.residual < last_residual && out.residual > 0.0)
+    {
+      const double rate = std::log (out.residual / last_residual) / double (it - last_check);
+      const double needed = std::log (params.tolerance / out.residual) / rate;
+      if (needed < double (kCheckInterval))  // also false when not finite
+        interval = std::max (1, static_cast<int> (std::ceil (needed)));
+    }
+    last_check = it;
+    last_residual = out.residual;
+    next_check = it + interval;
+    return false;
+  };
   while (it < params.max_iterations)
   {
-    // Dual ascent with projection, then the adjoint of each row (dualRange).
-    const DualPass pass{graph.row_ptr.data (), graph.col.data (), root_weight.data (),
-                        xbar.data (),        {y.col (0).data (), y.col (1).data (), y.col (2).data ()},
-                        gty.data (),         static_cast<float> (0.5 / scale), bound_gamma,
-                        params.norm};
+    // Dual ascent with projection, then the adjoint of each row (dualPass); after a
+    // check, with TV(x) of its iterate, which x still holds.
+    const DualPass pass{graph.row_ptr.data (),
+                        graph.col.data (),
+                        root_weight.data (),
+                        xbar.data (),
+                        {y.col (0).data (), y.col (1).data (), y.col (2).data ()},
+                        gty.data (),
+                        static_cast<float> (0.5 / scale),
+                        bound_gamma,
+                        params.norm,
+                        pending ? x.data () : nullptr,
+                        graph.weight.data ()};
     const auto dual = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
-      dualPass (pass, begin, end);
+      return dualPass (pass, begin, end);
     };
-    detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
-      detail::wide (dual, begin, end);
-    });
+    const double variation = 0.5 * detail::parallelSum<double> (n, threads, [&] (std::size_t begin, std::size_t end) {
+                                return detail::wide (dual, begin, end);
+                              });
+    if (pending)
+    {
+      pending = false;
+      if (gapMet (variation))
+      {
+        out.converged = true;
+        break;  // with x the check's iterate (the duals moved on: they are not returned)
+      }
+    }
     // Primal step: prox of 1/2 |x - f|^2, then the accelerated extrapolation.
     const double theta = 1.0 / std::sqrt (1.0 + 2.0 * scale * min_tau);
     const auto primal_step = [&, scale] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
@@ -401,24 +485,11 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
     scale *= theta;
     ++it;
 
-    // Duality gap at the checks and at the cap: P(x) - D(y), with
-    // D(y) = <f, grad^T y> - 1/2 |grad^T y|^2 (y is feasible after the projection).
+    // A gap check: the vertex terms now, while grad^T y is this iteration's; TV(x) with
+    // the next dual pass (one pass over the graph fewer), or at once at the cap.
     if (it == next_check || it == params.max_iterations)
     {
-      // |x - f|^2, <f, grad^T y> and |grad^T y|^2 in one parallel pass.
-      struct Terms
-      {
-        double data = 0.0, cross = 0.0, adjoint = 0.0;
-        Terms &
-        operator+= (const Terms &o)
-        {
-          data += o.data;
-          cross += o.cross;
-          adjoint += o.adjoint;
-          return *this;
-        }
-      };
-      const Terms terms = detail::parallelSum<Terms> (n, threads, [&] (std::size_t begin, std::size_t end) {
+      terms = detail::parallelSum<Terms> (n, threads, [&] (std::size_t begin, std::size_t end) {
         Terms t;
         for (std::size_t i = begin; i < end; ++i)
           for (int c = 0; c < 3; ++c)
@@ -429,35 +500,10 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
           }
         return t;
       });
-      const double primal =
-          0.5 * terms.data + gamma * totalVariation (graph, x, params.norm, threads);
-      last_objective = primal;
-      const double dual = terms.cross - 0.5 * terms.adjoint;
-      gap = primal - dual;
-      // The floor: with a gamma so small that the objective is below the rounding of x
-      // in double, the gap measures only that rounding and never meets the tolerance.
-      // Stopping there leaves x within sqrt(2 tolerance) 1e-10 |f| of the minimiser
-      // (the objective is 1-strongly convex): nothing a float output can show.
-      const double scale = std::max (primal, 1e-20 * f_norm2);
-      out.residual = gap / scale;
-      if (params.progress)
-        params.progress (it, out.residual);
-      if (gap <= params.tolerance * scale)
-      {
+      if (it < params.max_iterations)
+        pending = true;
+      else if (gapMet (totalVariation (graph, x, params.norm, threads)))
         out.converged = true;
-        break;
-      }
-      int interval = last_check > 0 ? kCheckInterval : kFirstChecks;
-      if (last_check > 0 && out.residual < last_residual && out.residual > 0.0)
-      {
-        const double rate = std::log (out.residual / last_residual) / double (it - last_check);
-        const double needed = std::log (params.tolerance / out.residual) / rate;
-        if (needed < double (kCheckInterval))  // also false when not finite
-          interval = std::max (1, static_cast<int> (std::ceil (needed)));
-      }
-      last_check = it;
-      last_residual = out.residual;
-      next_check = it + interval;
     }
   }
   out.iterations = it;
