@@ -16,6 +16,8 @@ bool
 processorHasAvx2 ()
 {
 #if PCL_GRAPH_DENOISE_WIDE_KERNELS
+  // Initialised here too: a caller's static constructor may run before the runtime's.
+  __builtin_cpu_init ();
   return __builtin_cpu_supports ("avx2");
 #else
   return false;
