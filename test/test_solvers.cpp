@@ -14,8 +14,8 @@
 #include <pcl_graph_denoise/core/solvers.h>
 
 #include "aggregation.h"
-#include "wide_kernels.h"
 #include "synthetic.h"
+#include "wide_kernels.h"
 
 #include <gtest/gtest.h>
 

@@ -125,9 +125,9 @@ dualPass (const DualPass &p, std::size_t begin, std::size_t end)
   double dx[3][kDualBatch];
   double variation = 0.0;
   const std::uint64_t last = p.row_ptr[end];
-  // The gathers' rows and the sums' row (with their ends).
-  std::size_t row = begin, x_row = begin, sum_row = begin;
-  std::uint64_t row_end = p.row_ptr[begin + 1], x_row_end = row_end, sum_end = row_end;
+  // The gather's row and the sums' row (with their ends).
+  std::size_t row = begin, sum_row = begin;
+  std::uint64_t row_end = p.row_ptr[begin + 1], sum_end = row_end;
   double acc0 = 0.0, acc1 = 0.0, acc2 = 0.0;
   for (std::uint64_t first = p.row_ptr[begin]; first < last; first += kDualBatch)
   {
@@ -135,6 +135,9 @@ dualPass (const DualPass &p, std::size_t begin, std::size_t end)
         static_cast<std::size_t> (std::min<std::uint64_t> (kDualBatch, last - first));
     if (p.x)
     {
+      // The same entries as x-bar's gather below, from the same row.
+      std::size_t x_row = row;
+      std::uint64_t x_row_end = row_end;
       gatherDifferences (p.row_ptr, p.col, p.x, first, count, x_row, x_row_end, dx);
       variation = batchVariation (dx, p.weight + first, count, p.norm, variation);
     }
