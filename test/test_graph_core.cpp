@@ -21,6 +21,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -1089,6 +1090,83 @@ TEST (RadiusGraph, NormalResidualOffByDefaultAndValidated)
   params.residual_multiplier = 1e-6;
   const RadiusDegrees few = radiusGraphDegrees (noisySquare (4, 0.01f, 36), params);
   EXPECT_EQ (few.off_surface, std::vector<std::uint8_t> (4, 0));
+}
+
+TEST (Components, MatchABreadthFirstSearchOnAnyNumberOfThreads)
+{
+  // 150,000 vertices (the union-find works in blocks of 65,536): 400 components of random
+  // members, each linked by a random tree (edges across blocks, in both directions of the
+  // order), vertices without an edge, and zero-weight entries between components and to
+  // otherwise unlinked vertices, which must join nothing.
+  const std::size_t n = 150000;
+  std::mt19937 rng (61);
+  std::vector<int> label (n, -1);
+  std::vector<std::vector<VertexIndex>> members (400);
+  for (std::size_t v = 0; v < n; ++v)
+    if (rng () % 10 != 0)
+    {
+      label[v] = static_cast<int> (rng () % members.size ());
+      members[static_cast<std::size_t> (label[v])].push_back (static_cast<VertexIndex> (v));
+    }
+  std::vector<std::map<VertexIndex, float>> rows (n);
+  const auto link = [&] (VertexIndex a, VertexIndex b, float w) {
+    rows[a][b] = w;
+    rows[b][a] = w;
+  };
+  for (auto &m : members)
+  {
+    std::shuffle (m.begin (), m.end (), rng);
+    for (std::size_t r = 1; r < m.size (); ++r)
+      link (m[r], m[rng () % r], 0.5f);
+  }
+  for (int e = 0; e < 5000; ++e)
+  {
+    const auto a = static_cast<VertexIndex> (rng () % n), b = static_cast<VertexIndex> (rng () % n);
+    if (a != b && label[a] != label[b])
+      link (a, b, 0.0f);
+  }
+  PointGraph graph;
+  graph.order.resize (n);
+  std::iota (graph.order.begin (), graph.order.end (), VertexIndex (0));
+  graph.row_ptr.assign (1, 0);
+  for (const auto &row : rows)
+  {
+    for (const auto &[j, w] : row)
+    {
+      graph.col.push_back (j);
+      graph.weight.push_back (w);
+    }
+    graph.row_ptr.push_back (graph.col.size ());
+  }
+  // Breadth-first over the positive entries.
+  GraphComponents expected;
+  std::vector<std::uint8_t> seen (n, 0);
+  for (std::size_t s = 0; s < n; ++s)
+  {
+    if (seen[s])
+      continue;
+    std::vector<std::size_t> queue{s};
+    seen[s] = 1;
+    for (std::size_t q = 0; q < queue.size (); ++q)
+      for (const auto &[j, w] : rows[queue[q]])
+        if (w > 0.0f && !seen[j])
+        {
+          seen[j] = 1;
+          queue.push_back (j);
+        }
+    ++expected.count;
+    expected.isolated += queue.size () == 1;
+    expected.largest = std::max (expected.largest, queue.size ());
+  }
+  ASSERT_GT (expected.isolated, 10000u);  // the test's own premises
+  ASSERT_LT (expected.count, 400u + expected.isolated + 1u);
+  for (const int threads : {1, 2, 3, 0})
+  {
+    const GraphComponents parts = connectedComponents (graph, threads);
+    EXPECT_EQ (parts.count, expected.count) << threads;
+    EXPECT_EQ (parts.isolated, expected.isolated) << threads;
+    EXPECT_EQ (parts.largest, expected.largest) << threads;
+  }
 }
 
 class Operators : public ::testing::Test

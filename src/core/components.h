@@ -17,10 +17,12 @@ namespace core {
 namespace detail {
 
 /** For every vertex the smallest vertex of its connected component, counting only
- *  entries of positive weight (union-find); `linked`, when given, receives 1 for the
- *  vertices with at least one such entry. Serial: the same labels on any machine. */
+ *  entries of positive weight (union-find, on `num_threads` threads, 0 = all); `linked`,
+ *  when given, receives 1 for the vertices with at least one such entry. The labels are
+ *  the same for any number of threads. */
 std::vector<VertexIndex>
-componentRoots (const PointGraph &graph, std::vector<std::uint8_t> *linked = nullptr);
+componentRoots (const PointGraph &graph, std::vector<std::uint8_t> *linked = nullptr,
+                int num_threads = 0);
 
 } // namespace detail
 } // namespace core

@@ -14,6 +14,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pcl_graph_denoise {
@@ -151,42 +152,79 @@ applyGradientAdjoint (const PointGraph &graph, const Signal3 &g, Signal3 &x, int
 namespace detail {
 
 std::vector<VertexIndex>
-componentRoots (const PointGraph &graph, std::vector<std::uint8_t> *linked)
+componentRoots (const PointGraph &graph, std::vector<std::uint8_t> *linked, int num_threads)
 {
   const std::size_t n = graph.numVertices ();
   std::vector<VertexIndex> parent (n);
   std::iota (parent.begin (), parent.end (), VertexIndex (0));
-  const auto root = [&] (VertexIndex v) {
-    while (parent[v] != v)
-      v = parent[v] = parent[parent[v]];  // path halving
-    return v;
+  // Joins the trees of a and b under the smaller root: every root is its tree's smallest
+  // vertex, so the labels do not depend on the order of the joins.
+  const auto join = [&parent] (VertexIndex a, VertexIndex b) {
+    const auto root = [&parent] (VertexIndex v) {
+      while (parent[v] != v)
+        v = parent[v] = parent[parent[v]];  // path halving
+      return v;
+    };
+    a = root (a);
+    b = root (b);
+    if (a != b)
+      parent[std::max (a, b)] = std::min (a, b);
   };
   if (linked)
     linked->assign (n, 0);
+  // The graph is symmetric and its rows sorted: each edge is joined once, from the
+  // entries of the row of its smaller vertex past the diagonal. Blocks of consecutive
+  // vertices join their inner edges in parallel (a join inside a block only touches the
+  // block's own vertices) and keep their edges to later blocks, joined afterwards.
+  constexpr std::size_t kBlock = std::size_t (1) << 16;
+  const std::size_t num_blocks = (n + kBlock - 1) / kBlock;
+  std::vector<std::vector<std::pair<VertexIndex, VertexIndex>>> outward (num_blocks);
+  parallelFor (
+      num_blocks, num_threads,
+      [&] (std::size_t first, std::size_t last) {
+        for (std::size_t b = first; b < last; ++b)
+        {
+          const std::size_t end = std::min (n, (b + 1) * kBlock);
+          for (std::size_t i = b * kBlock; i < end; ++i)
+          {
+            const std::uint64_t row_end = graph.row_ptr[i + 1];
+            std::uint64_t e = graph.row_ptr[i];
+            bool any = false;  // an entry of positive weight
+            for (; e < row_end && graph.col[e] < i; ++e)
+              any = any || graph.weight[e] > 0.0f;
+            for (; e < row_end; ++e)
+            {
+              if (!(graph.weight[e] > 0.0f))
+                continue;
+              any = true;
+              const VertexIndex j = graph.col[e];
+              if (j < end)
+                join (static_cast<VertexIndex> (i), j);
+              else
+                outward[b].emplace_back (static_cast<VertexIndex> (i), j);
+            }
+            if (linked)
+              (*linked)[i] = any;
+          }
+        }
+      },
+      1);
+  for (const auto &edges : outward)
+    for (const auto &[i, j] : edges)
+      join (i, j);
   for (std::size_t i = 0; i < n; ++i)
-    for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
-    {
-      if (!(graph.weight[e] > 0.0f))
-        continue;
-      if (linked)
-        (*linked)[i] = 1;
-      const VertexIndex a = root (static_cast<VertexIndex> (i)), b = root (graph.col[e]);
-      if (a != b)
-        parent[std::max (a, b)] = std::min (a, b);
-    }
-  for (std::size_t i = 0; i < n; ++i)
-    parent[i] = root (static_cast<VertexIndex> (i));
+    parent[i] = parent[parent[i]];  // parents precede: parent[i] is already its root
   return parent;
 }
 
 } // namespace detail
 
 GraphComponents
-connectedComponents (const PointGraph &graph)
+connectedComponents (const PointGraph &graph, int num_threads)
 {
   const std::size_t n = graph.numVertices ();
   std::vector<std::uint8_t> linked;
-  const std::vector<VertexIndex> root = detail::componentRoots (graph, &linked);
+  const std::vector<VertexIndex> root = detail::componentRoots (graph, &linked, num_threads);
   GraphComponents out;
   std::vector<std::size_t> size (n, 0);
   for (std::size_t i = 0; i < n; ++i)

@@ -103,7 +103,7 @@ residualScale (const PointGraph &graph, const Signal3 &f, int num_threads)
   const std::size_t n = static_cast<std::size_t> (f.rows ());
   if (n == 0)
     return 0.0;
-  const std::vector<VertexIndex> root = componentRoots (graph);
+  const std::vector<VertexIndex> root = componentRoots (graph, nullptr, num_threads);
   std::size_t components = 0;
   for (std::size_t i = 0; i < n; ++i)
     components += root[i] == i;

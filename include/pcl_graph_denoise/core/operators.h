@@ -51,9 +51,10 @@ struct GraphComponents
   std::size_t largest = 0;   ///< vertices of the largest component
 };
 
-/** \brief The connected components of `graph` (union-find over its entries). */
+/** \brief The connected components of `graph` (union-find over its entries, on
+ *  `num_threads` threads, 0 = all hardware threads; the same result for any number). */
 GraphComponents
-connectedComponents (const PointGraph &graph);
+connectedComponents (const PointGraph &graph, int num_threads = 0);
 
 } // namespace core
 } // namespace pcl_graph_denoise

@@ -215,7 +215,7 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
       f.row (v) = position.row (graph.order[v]);
     used_sigma_ = graph.sigma;
     used_gamma_ = gamma_;
-    components_ = core::connectedComponents (graph);
+    components_ = core::connectedComponents (graph, num_threads_);
     if (components_.count > 1)
       PCL_DEBUG ("[pcl_graph_denoise::%s::applyFilter] The graph of %zu points has %zu "
                  "connected components (largest %zu points, %zu isolated points that do "
