@@ -509,6 +509,77 @@ TEST (AggregationPreconditioner, TheVCycleIsSymmetricPositiveAndThreadIndependen
   }
 }
 
+TEST (TikhonovSystem, SolvesEverySignalAsAFreshSystemWouldAndTwiceIsTheSquaredFilter)
+{
+  // Two spheres far apart (two components: the residual's scale is taken per component)
+  // and one point on its own. One system solves f, then its own result, then f again.
+  PointMatrix points (2 * 400 + 1, 3);
+  points.topRows (400) = toMatrix (synthetic::noisySphere (400, 1.0, 0.02, 71));
+  points.middleRows (400, 400) = toMatrix (synthetic::noisySphere (400, 1.0, 0.02, 72));
+  points.middleRows (400, 400).col (0).array () += 50.0f;
+  points.row (800) << -40.0f, 3.0f, 1.0f;
+  const PointGraph g = buildKnnGraph (points);
+  const Signal3 f = vertexSignal (g, points);
+  const double gamma = 0.4;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig (denseLaplacian (g));
+  const Eigen::VectorXd h = (1.0 + 2.0 * gamma * eig.eigenvalues ().array ()).inverse ();
+  const Eigen::MatrixXd twice =
+      eig.eigenvectors () * h.array ().square ().matrix ().asDiagonal () * eig.eigenvectors ().transpose () * f;
+  for (const TikhonovSolver solver : {TikhonovSolver::CONJUGATE_GRADIENT, TikhonovSolver::CHOLMOD})
+  {
+    TikhonovParams params;
+    params.solver = solver;
+    params.tolerance = 1e-10;
+    const TikhonovSystem system (g, gamma, params);
+    SolverReport first, second, again, fresh;
+    const Signal3 x1 = system.solve (f, &first);
+    const Signal3 x2 = system.solve (x1, &second);
+    const Signal3 x3 = system.solve (f, &again);
+    // Nothing of a solve stays in the system: the same bits as a fresh system's.
+    EXPECT_TRUE ((x3.array () == x1.array ()).all ());
+    EXPECT_EQ (again.iterations, first.iterations);
+    EXPECT_EQ (again.residual, first.residual);
+    const Signal3 y2 = TikhonovSystem (g, gamma, params).solve (x1, &fresh);
+    EXPECT_TRUE ((x2.array () == y2.array ()).all ());
+    EXPECT_EQ (second.iterations, fresh.iterations);
+    EXPECT_EQ (second.residual, fresh.residual);
+    EXPECT_TRUE (first.converged && second.converged);
+    // Twice is the spectral filter 1 / (1 + 2 gamma lambda)^2.
+    EXPECT_LT ((x2 - twice).cwiseAbs ().maxCoeff (), 1e-7) << static_cast<int> (solver);
+    EXPECT_EQ (x2.row (static_cast<Eigen::Index> (
+                   std::find (g.order.begin (), g.order.end (), VertexIndex (800)) - g.order.begin ())),
+               f.row (static_cast<Eigen::Index> (
+                   std::find (g.order.begin (), g.order.end (), VertexIndex (800)) - g.order.begin ())));
+  }
+}
+
+TEST (TikhonovSystem, ChecksItsSettingsOnceAndEachSignal)
+{
+  const Problem p (200);
+  const double nan = std::numeric_limits<double>::quiet_NaN ();
+  for (const double gamma : {-1.0, nan, std::numeric_limits<double>::infinity ()})
+    EXPECT_THROW (TikhonovSystem (p.graph, gamma), std::invalid_argument) << gamma;
+  TikhonovParams bad;
+  bad.tolerance = 0.0;
+  EXPECT_THROW (TikhonovSystem (p.graph, 1.0, bad), std::invalid_argument);
+  bad = TikhonovParams{};
+  bad.num_threads = -1;
+  EXPECT_THROW (TikhonovSystem (p.graph, 1.0, bad), std::invalid_argument);
+  const TikhonovSystem system (p.graph, 1.0);
+  EXPECT_THROW (system.solve (p.f.topRows (10)), std::invalid_argument);
+  Signal3 not_finite = p.f;
+  not_finite (3, 1) = nan;
+  EXPECT_THROW (system.solve (not_finite), std::invalid_argument);
+  EXPECT_NO_THROW (system.solve (p.f));  // still usable after a rejected signal
+  // Zero gamma: the identity, converged, also moved into another system.
+  TikhonovSystem identity (p.graph, 0.0);
+  TikhonovSystem moved = std::move (identity);
+  SolverReport report;
+  EXPECT_TRUE ((moved.solve (p.f, &report).array () == p.f.array ()).all ());
+  EXPECT_TRUE (report.converged);
+  EXPECT_EQ (report.iterations, 0);
+}
+
 TEST (Tikhonov, RejectsInvalidInput)
 {
   const Problem p (100);

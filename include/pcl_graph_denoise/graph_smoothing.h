@@ -368,7 +368,7 @@ protected:
 
   /** \brief pcl::Filter's entry point: gathers the finite points named by the indices
    *  and the cloud's other finite points (searched as neighbours), merges exact copies,
-   *  runs the passes (graph, gamma, smooth(), displacement) and writes x, y, z of the
+   *  runs the passes (graph, gamma, smoother(), displacement) and writes x, y, z of the
    *  named points back into a copy of the input. */
   void
   applyFilter (PointCloud &output) override;
@@ -386,25 +386,30 @@ protected:
   using GraphBuilder = std::function<core::PointGraph (const core::PointMatrix &)>;
 
   /** \brief Runs the passes on `start` (one row per point, relative coordinates): each
-   *  builds its graph with `build_graph` on the current positions, derives gamma, calls
-   *  smooth() and applies the refinements; returns the final positions in the same
+   *  builds its graph with `build_graph` on the current positions, derives gamma, solves
+   *  with smoother() and applies the refinements; returns the final positions in the same
    *  rows. Sets the used_ and last-call members. The graph may be any PointGraph over
    *  the rows (GraphSequenceSmoothing gives the spatio-temporal one).
    *  \throws std::exception from the core (invalid sizes, memory). */
   core::Signal3
   runPasses (const core::Signal3 &start, const GraphBuilder &build_graph);
 
-  /** \brief Denoise the signal f (graph vertex order) with strength gamma. */
-  virtual core::Signal3
-  smooth (const core::PointGraph &graph, const core::Signal3 &f, double gamma,
-          core::SolverReport &report) const = 0;
+  /** \brief One denoising of a signal f (graph vertex order), reporting its solve. */
+  using Smoother = std::function<core::Signal3 (const core::Signal3 &f, core::SolverReport &report)>;
 
-  /** \brief The solver's progress callback for smooth(): reports SOLVING events of the
+  /** \brief The denoiser of `graph` at strength gamma, set up once for every signal it is
+   *  given (the shrinkage correction solves twice on one graph and gamma). The graph must
+   *  outlive it.
+   *  \throws std::exception from the core (invalid parameters, a failed factorisation). */
+  virtual Smoother
+  smoother (const core::PointGraph &graph, double gamma) const = 0;
+
+  /** \brief The solver's progress callback for smoother(): reports SOLVING events of the
    *  current pass through setProgressCallback's callback; empty when none is set. */
   std::function<void (int, double)>
   solverProgress () const;
 
-  /** \brief Which computation smooth() runs, for the memory estimate. */
+  /** \brief Which computation smoother() runs, for the memory estimate. */
   virtual core::SmoothingKind
   smoothingKind () const = 0;
 

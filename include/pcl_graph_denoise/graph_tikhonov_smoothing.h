@@ -58,9 +58,8 @@ public:
   getSolver () const { return solver_; }
 
 protected:
-  core::Signal3
-  smooth (const core::PointGraph &graph, const core::Signal3 &f, double gamma,
-          core::SolverReport &report) const override;
+  typename GraphSmoothing<PointT>::Smoother
+  smoother (const core::PointGraph &graph, double gamma) const override;
 
   core::SmoothingKind
   smoothingKind () const override;

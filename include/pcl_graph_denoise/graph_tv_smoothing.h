@@ -59,9 +59,8 @@ public:
   getNorm () const { return norm_; }
 
 protected:
-  core::Signal3
-  smooth (const core::PointGraph &graph, const core::Signal3 &f, double gamma,
-          core::SolverReport &report) const override;
+  typename GraphSmoothing<PointT>::Smoother
+  smoother (const core::PointGraph &graph, double gamma) const override;
 
   core::SmoothingKind
   smoothingKind () const override;

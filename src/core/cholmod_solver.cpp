@@ -42,12 +42,20 @@ check (bool ok, cholmod_common *c, const char *what)
 
 } // namespace
 
-Signal3
-solveTikhonovCholmod (const PointGraph &graph, const Signal3 &f, double gamma)
+struct CholmodFactor::Impl
+{
+  Common common;
+  cholmod_factor *factor = nullptr;
+  std::size_t n = 0;
+
+  ~Impl () { cholmod_l_free_factor (&factor, common.get ()); }
+};
+
+CholmodFactor::CholmodFactor (const PointGraph &graph, double gamma) : impl_ (new Impl)
 {
   const std::size_t n = graph.numVertices ();
-  Common common;
-  cholmod_common *c = common.get ();
+  impl_->n = n;
+  cholmod_common *c = impl_->common.get ();
 
   // The lower triangle (stype -1) in compressed columns: column i holds the diagonal
   // 1 + 2 gamma d_i, then -2 gamma w_ij for the neighbours j > i (the upper part of CSR
@@ -79,21 +87,37 @@ solveTikhonovCholmod (const PointGraph &graph, const Signal3 &f, double gamma)
   }
   cp[n] = pos;
 
+  impl_->factor = cholmod_l_analyze (a, c);
+  const bool analysed = impl_->factor != nullptr && c->status >= CHOLMOD_OK;
+  // A huge gamma x degree makes I + 2 gamma L numerically singular: CHOLMOD then only
+  // warns (CHOLMOD_NOT_POSDEF, factor->minor < n) and its solve would be inf or NaN.
+  const bool factorised_any =
+      analysed && cholmod_l_factorize (a, impl_->factor, c) && c->status >= CHOLMOD_OK;
+  const bool not_positive_definite = factorised_any && impl_->factor->minor < n;
+  const int status = c->status;
+  cholmod_l_free_sparse (&a, c);
+  if (not_positive_definite)
+    throw std::runtime_error ("CHOLMOD: the Tikhonov system is not numerically positive "
+                              "definite (gamma x degree too large for double precision)");
+  if (!factorised_any)
+    throw std::runtime_error ("CHOLMOD could not factorise the Tikhonov system (status " +
+                              std::to_string (status) + ")");
+}
+
+CholmodFactor::~CholmodFactor () = default;
+
+Signal3
+CholmodFactor::solve (const Signal3 &f) const
+{
+  const std::size_t n = impl_->n;
+  cholmod_common *c = impl_->common.get ();
   cholmod_dense *b = cholmod_l_allocate_dense (n, 3, n, CHOLMOD_REAL, c);
   check (b != nullptr, c, "allocate_dense");
   auto *bx = static_cast<double *> (b->x);
   for (std::size_t i = 0; i < n; ++i)
     for (int col = 0; col < 3; ++col)
       bx[col * n + i] = f (i, col);
-
-  cholmod_factor *factor = cholmod_l_analyze (a, c);
-  const bool analysed = factor != nullptr && c->status >= CHOLMOD_OK;
-  // A huge gamma x degree makes I + 2 gamma L numerically singular: CHOLMOD then only
-  // warns (CHOLMOD_NOT_POSDEF, factor->minor < n) and its solve would be inf or NaN.
-  const bool factorised_any = analysed && cholmod_l_factorize (a, factor, c) && c->status >= CHOLMOD_OK;
-  const bool not_positive_definite = factorised_any && factor->minor < n;
-  const bool factorised = factorised_any && !not_positive_definite;
-  cholmod_dense *x = factorised ? cholmod_l_solve (CHOLMOD_A, factor, b, c) : nullptr;
+  cholmod_dense *x = cholmod_l_solve (CHOLMOD_A, impl_->factor, b, c);
   Signal3 out;
   const bool solved = x != nullptr && c->status >= CHOLMOD_OK;
   if (solved)
@@ -106,14 +130,9 @@ solveTikhonovCholmod (const PointGraph &graph, const Signal3 &f, double gamma)
   }
   const int status = c->status;
   cholmod_l_free_dense (&x, c);
-  cholmod_l_free_factor (&factor, c);
   cholmod_l_free_dense (&b, c);
-  cholmod_l_free_sparse (&a, c);
-  if (not_positive_definite)
-    throw std::runtime_error ("CHOLMOD: the Tikhonov system is not numerically positive "
-                              "definite (gamma x degree too large for double precision)");
   if (!solved)
-    throw std::runtime_error ("CHOLMOD could not factorise or solve the Tikhonov system (status " +
+    throw std::runtime_error ("CHOLMOD could not solve the Tikhonov system (status " +
                               std::to_string (status) + ")");
   return out;
 }

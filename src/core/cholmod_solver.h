@@ -9,14 +9,34 @@
 
 #include <pcl_graph_denoise/core/graph.h>
 
+#include <memory>
+
 namespace pcl_graph_denoise {
 namespace core {
 namespace detail {
 
-/** x = (I + 2 gamma L)^-1 f by a sparse Cholesky factorisation.
- *  \throws std::runtime_error when CHOLMOD fails (e.g. out of memory). */
-Signal3
-solveTikhonovCholmod (const PointGraph &graph, const Signal3 &f, double gamma);
+/** The sparse Cholesky factorisation of I + 2 gamma L, computed once and solved for any
+ *  number of right-hand sides. */
+class CholmodFactor
+{
+public:
+  /** \throws std::runtime_error when CHOLMOD fails (e.g. out of memory) or the system is
+   *  not numerically positive definite (gamma x degree too large for double precision). */
+  CholmodFactor (const PointGraph &graph, double gamma);
+  ~CholmodFactor ();
+  CholmodFactor (const CholmodFactor &) = delete;
+  CholmodFactor &
+  operator= (const CholmodFactor &) = delete;
+
+  /** x = (I + 2 gamma L)^-1 f. Not for concurrent calls.
+   *  \throws std::runtime_error when CHOLMOD fails. */
+  Signal3
+  solve (const Signal3 &f) const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 } // namespace detail
 } // namespace core

@@ -97,18 +97,16 @@ centredNorm (const Signal3 &x, int num_threads)
  *  centred norm alone. */
 constexpr double kRobustScaleCap = 4.0;
 
+/** residualScale given the graph's components: `root` as componentRoots gives it, or empty
+ *  for a graph of at most one component. */
 inline double
-residualScale (const PointGraph &graph, const Signal3 &f, int num_threads)
+residualScale (const std::vector<VertexIndex> &root, const Signal3 &f, int num_threads)
 {
   const std::size_t n = static_cast<std::size_t> (f.rows ());
   if (n == 0)
     return 0.0;
-  const std::vector<VertexIndex> root = componentRoots (graph, nullptr, num_threads);
-  std::size_t components = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    components += root[i] == i;
   double centred = 0.0;
-  if (components <= 1)
+  if (root.empty ())
     centred = centredNorm (f, num_threads);
   else
   {
@@ -147,23 +145,51 @@ residualScale (const PointGraph &graph, const Signal3 &f, int num_threads)
   return robust > 0.0 ? std::min (centred, robust) : centred;  // 0: most rows coincide
 }
 
-/** Checks shared by the solvers; throws std::invalid_argument. */
+/** The components of a graph as residualScale takes them: componentRoots, or empty when
+ *  there is at most one. */
+inline std::vector<VertexIndex>
+residualComponents (const PointGraph &graph, int num_threads)
+{
+  std::vector<VertexIndex> root = componentRoots (graph, nullptr, num_threads);
+  std::size_t components = 0;
+  for (std::size_t i = 0; i < root.size () && components <= 1; ++i)
+    components += root[i] == i;
+  if (components <= 1)
+    root.clear ();
+  return root;
+}
+
+/** The solvers' checks of their settings; throws std::invalid_argument. */
 inline void
-requireSolverInput (const PointGraph &graph, const Signal3 &f, double gamma, int num_threads,
-                    double tolerance, int max_iterations)
+requireSolverSettings (double gamma, int num_threads, double tolerance, int max_iterations)
 {
   if (!(std::isfinite (tolerance) && tolerance > 0.0))
     throw std::invalid_argument ("tolerance must be finite and > 0");
   if (max_iterations < 0)
     throw std::invalid_argument ("max_iterations must be >= 0");
-  if (static_cast<std::size_t> (f.rows ()) != graph.numVertices ())
-    throw std::invalid_argument ("the signal has the wrong number of rows");
   if (!(std::isfinite (gamma) && gamma >= 0.0))
     throw std::invalid_argument ("gamma must be finite and >= 0");
   if (num_threads < 0)
     throw std::invalid_argument ("num_threads must be >= 0");
+}
+
+/** The solvers' checks of a signal; throws std::invalid_argument. */
+inline void
+requireSolverSignal (const PointGraph &graph, const Signal3 &f)
+{
+  if (static_cast<std::size_t> (f.rows ()) != graph.numVertices ())
+    throw std::invalid_argument ("the signal has the wrong number of rows");
   if (!f.allFinite ())
     throw std::invalid_argument ("the signal must be finite");
+}
+
+/** Checks shared by the solvers; throws std::invalid_argument. */
+inline void
+requireSolverInput (const PointGraph &graph, const Signal3 &f, double gamma, int num_threads,
+                    double tolerance, int max_iterations)
+{
+  requireSolverSettings (gamma, num_threads, tolerance, max_iterations);
+  requireSolverSignal (graph, f);
 }
 
 /** Throws std::runtime_error when a solver's result is not finite, or lies farther

@@ -233,42 +233,109 @@ correct (const PointGraph &graph, double g2, const std::vector<double> &degree,
   return it;
 }
 
-/** The conjugate gradient in mixed precision: a correction of x = f solved with its
- *  vectors in single precision, the residual of the result recomputed in double, and,
- *  where it is still above the tolerance, a further correction in double precision. */
-Signal3
-conjugateGradient (const PointGraph &graph, const Signal3 &f, double gamma,
-                   const TikhonovParams &params, SolverReport &report)
+} // namespace
+
+struct TikhonovSystem::Impl
 {
-  const int threads = params.num_threads;
-  const double g2 = 2.0 * gamma;
-  const std::vector<double> degree = weightedDegree (graph, threads);
-  const AggregationPreconditioner coarse (graph, degree, g2, threads);
-  const double scale = detail::residualScale (graph, f, threads);
-  const double target = params.tolerance * scale;
-  Signal3 x = detail::matrixOnHugePages<Signal3> (f.rows ()), r;
-  x = f;
-  double residual = trueResidual (graph, f, x, g2, threads, r);
-  int it = 0;
-  if (residual > target && params.max_iterations > 0)
+  Impl (const PointGraph &g, double strength, const TikhonovParams &p)
+  : graph (g), gamma (strength), params (p)
   {
-    it += correct<float> (graph, g2, degree, coarse, r, std::max (target, kSinglePrecisionReach * residual),
-                          params.max_iterations, it, params, scale, x);
-    residual = trueResidual (graph, f, x, g2, threads, r);
-    if (residual > target && it < params.max_iterations)
-    {
-      it += correct<double> (graph, g2, degree, coarse, r, target, params.max_iterations - it, it,
-                             params, scale, x);
-      residual = trueResidual (graph, f, x, g2, threads, r);
-    }
   }
-  report.iterations = it;
-  report.residual = scale > 0.0 ? residual / scale : 0.0;
-  report.converged = residual <= target;
-  return x;
+
+  const PointGraph &graph;
+  const double gamma;
+  const TikhonovParams params;
+  std::vector<double> degree;                          ///< conjugate gradient
+  std::unique_ptr<AggregationPreconditioner> coarse;   ///< conjugate gradient
+  std::vector<VertexIndex> components;                 ///< residualComponents
+  std::unique_ptr<detail::CholmodFactor> cholmod;      ///< CHOLMOD
+
+  /** The conjugate gradient in mixed precision: a correction of x = f solved with its
+   *  vectors in single precision, the residual of the result recomputed in double, and,
+   *  where it is still above the tolerance, a further correction in double precision. */
+  Signal3
+  conjugateGradient (const Signal3 &f, SolverReport &report) const
+  {
+    const int threads = params.num_threads;
+    const double g2 = 2.0 * gamma;
+    const double scale = detail::residualScale (components, f, threads);
+    const double target = params.tolerance * scale;
+    Signal3 x = detail::matrixOnHugePages<Signal3> (f.rows ()), r;
+    x = f;
+    double residual = trueResidual (graph, f, x, g2, threads, r);
+    int it = 0;
+    if (residual > target && params.max_iterations > 0)
+    {
+      it += correct<float> (graph, g2, degree, *coarse, r,
+                            std::max (target, kSinglePrecisionReach * residual),
+                            params.max_iterations, it, params, scale, x);
+      residual = trueResidual (graph, f, x, g2, threads, r);
+      if (residual > target && it < params.max_iterations)
+      {
+        it += correct<double> (graph, g2, degree, *coarse, r, target, params.max_iterations - it,
+                               it, params, scale, x);
+        residual = trueResidual (graph, f, x, g2, threads, r);
+      }
+    }
+    report.iterations = it;
+    report.residual = scale > 0.0 ? residual / scale : 0.0;
+    report.converged = residual <= target;
+    return x;
+  }
+};
+
+TikhonovSystem::TikhonovSystem (const PointGraph &graph, double gamma,
+                                const TikhonovParams &params)
+{
+  detail::requireSolverSettings (gamma, params.num_threads, params.tolerance,
+                                 params.max_iterations);
+  impl_ = std::make_unique<Impl> (graph, gamma, params);
+  if (gamma == 0.0 || graph.numEntries () == 0)
+    return;  // the identity
+  impl_->components = detail::residualComponents (graph, params.num_threads);
+  if (params.solver == TikhonovSolver::CHOLMOD)
+    impl_->cholmod = std::make_unique<detail::CholmodFactor> (graph, gamma);
+  else
+  {
+    impl_->degree = weightedDegree (graph, params.num_threads);
+    impl_->coarse = std::make_unique<AggregationPreconditioner> (graph, impl_->degree, 2.0 * gamma,
+                                                                 params.num_threads);
+  }
 }
 
-} // namespace
+TikhonovSystem::~TikhonovSystem () = default;
+TikhonovSystem::TikhonovSystem (TikhonovSystem &&) noexcept = default;
+TikhonovSystem &TikhonovSystem::operator= (TikhonovSystem &&) noexcept = default;
+
+Signal3
+TikhonovSystem::solve (const Signal3 &f, SolverReport *report) const
+{
+  const Impl &s = *impl_;
+  detail::requireSolverSignal (s.graph, f);
+  SolverReport local;
+  SolverReport &out = report ? *report : local;
+  out = SolverReport{};
+  if (s.gamma == 0.0 || s.graph.numEntries () == 0)
+  {
+    out.converged = true;
+    return f;
+  }
+  if (s.cholmod)
+  {
+    Signal3 x = s.cholmod->solve (f);
+    detail::requireSaneResult (x, f, s.gamma, "Tikhonov (CHOLMOD)");
+    out.converged = true;
+    out.iterations = 1;
+    Signal3 r;
+    const double residual = trueResidual (s.graph, f, x, 2.0 * s.gamma, s.params.num_threads, r);
+    const double scale = detail::residualScale (s.components, f, s.params.num_threads);
+    out.residual = scale > 0.0 ? residual / scale : 0.0;
+    return x;
+  }
+  Signal3 x = s.conjugateGradient (f, out);
+  detail::requireSaneResult (x, f, s.gamma, "Tikhonov");
+  return x;
+}
 
 Signal3
 solveTikhonov (const PointGraph &graph, const Signal3 &f, double gamma,
@@ -276,30 +343,7 @@ solveTikhonov (const PointGraph &graph, const Signal3 &f, double gamma,
 {
   detail::requireSolverInput (graph, f, gamma, params.num_threads, params.tolerance,
                               params.max_iterations);
-
-  SolverReport local;
-  SolverReport &out = report ? *report : local;
-  out = SolverReport{};
-  if (gamma == 0.0 || graph.numEntries () == 0)
-  {
-    out.converged = true;
-    return f;
-  }
-  if (params.solver == TikhonovSolver::CHOLMOD)
-  {
-    Signal3 x = detail::solveTikhonovCholmod (graph, f, gamma);
-    detail::requireSaneResult (x, f, gamma, "Tikhonov (CHOLMOD)");
-    out.converged = true;
-    out.iterations = 1;
-    Signal3 r;
-    const double residual = trueResidual (graph, f, x, 2.0 * gamma, params.num_threads, r);
-    const double scale = detail::residualScale (graph, f, params.num_threads);
-    out.residual = scale > 0.0 ? residual / scale : 0.0;
-    return x;
-  }
-  Signal3 x = conjugateGradient (graph, f, gamma, params, out);
-  detail::requireSaneResult (x, f, gamma, "Tikhonov");
-  return x;
+  return TikhonovSystem (graph, gamma, params).solve (f, report);
 }
 
 } // namespace core

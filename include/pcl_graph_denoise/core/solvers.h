@@ -22,6 +22,7 @@
 #include <pcl_graph_denoise/core/memory.h>
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,38 @@ struct TikhonovParams
 Signal3
 solveTikhonov (const PointGraph &graph, const Signal3 &f, double gamma,
                const TikhonovParams &params = {}, SolverReport *report = nullptr);
+
+/** \brief The system I + 2 gamma L of one graph and strength, set up once and solved for
+ *  any number of right-hand sides (a precompute / solve split): the weighted degrees, the
+ *  conjugate gradient's coarse levels and the graph's connected components, or CHOLMOD's
+ *  factorisation, come with the constructor. Twicing (the filters' shrinkage correction)
+ *  solves the same system twice; solveTikhonov is one system solved once, and each solve
+ *  here gives the same result as solveTikhonov with the same settings, bit for bit. The
+ *  graph must outlive the system; solve() is not for concurrent calls on one system. */
+class TikhonovSystem
+{
+public:
+  /** \throws std::invalid_argument on invalid parameters or gamma.
+   *  \throws std::runtime_error when CHOLMOD cannot factorise the system (see
+   *  solveTikhonov). */
+  TikhonovSystem (const PointGraph &graph, double gamma, const TikhonovParams &params = {});
+  ~TikhonovSystem ();
+  /** \brief Takes over another system (which may then only be destroyed or assigned). */
+  TikhonovSystem (TikhonovSystem &&) noexcept;
+  /** \brief Takes over another system (which may then only be destroyed or assigned). */
+  TikhonovSystem &
+  operator= (TikhonovSystem &&) noexcept;
+
+  /** \brief Solves (I + 2 gamma L) x = f for the three columns of f (as solveTikhonov).
+   *  \throws std::invalid_argument when f has the wrong size or is not finite.
+   *  \throws std::runtime_error as solveTikhonov. */
+  Signal3
+  solve (const Signal3 &f, SolverReport *report = nullptr) const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 /** \brief Which norm of the edge differences total variation penalises. */
 enum class TotalVariationNorm

@@ -236,9 +236,11 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
     // keeps the solves of the pass's own run; the selection's runs are not reported.
     const auto denoise = [&] (const core::PointGraph &g, const core::Signal3 &signal, double gamma,
                               bool record) {
+      // Set up once for both solves of twicing, and released before the local surface.
+      Smoother smooth = smoother (g, gamma);
       const auto solve = [&] (const core::Signal3 &s) {
         core::SolverReport report;
-        core::Signal3 solved = smooth (g, s, gamma, report);
+        core::Signal3 solved = smooth (s, report);
         if (!record)
           return solved;
         // Each solve warns on its own when it stops before its tolerance; the report
@@ -256,6 +258,7 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
       const core::Signal3 smoothed = solve (signal);
       core::Signal3 x =
           shrinkage_correction_ ? core::Signal3 (2.0 * smoothed - solve (smoothed)) : smoothed;
+      smooth = nullptr;
       if (quadric)
         x = core::quadricDisplacement (g, signal, x, noise, num_threads_,
                                        local_surface_ == LocalSurface::QUADRIC

@@ -7,12 +7,13 @@
 #include <pcl_graph_denoise/graph_tikhonov_smoothing.h>
 #include <pcl_graph_denoise/impl/graph_smoothing.hpp>
 
+#include <memory>
+
 namespace pcl_graph_denoise {
 
 template <typename PointT>
-core::Signal3
-GraphTikhonovSmoothing<PointT>::smooth (const core::PointGraph &graph, const core::Signal3 &f,
-                                        double gamma, core::SolverReport &report) const
+typename GraphSmoothing<PointT>::Smoother
+GraphTikhonovSmoothing<PointT>::smoother (const core::PointGraph &graph, double gamma) const
 {
   core::TikhonovParams params;
   params.solver = solver_;
@@ -20,7 +21,10 @@ GraphTikhonovSmoothing<PointT>::smooth (const core::PointGraph &graph, const cor
   params.max_iterations = this->max_iterations_;
   params.num_threads = this->num_threads_;
   params.progress = this->solverProgress ();
-  return core::solveTikhonov (graph, f, gamma, params, &report);
+  auto system = std::make_shared<const core::TikhonovSystem> (graph, gamma, params);
+  return [system] (const core::Signal3 &f, core::SolverReport &report) {
+    return system->solve (f, &report);
+  };
 }
 
 template <typename PointT>

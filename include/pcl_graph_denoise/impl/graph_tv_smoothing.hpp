@@ -10,9 +10,8 @@
 namespace pcl_graph_denoise {
 
 template <typename PointT>
-core::Signal3
-GraphTVSmoothing<PointT>::smooth (const core::PointGraph &graph, const core::Signal3 &f,
-                                        double gamma, core::SolverReport &report) const
+typename GraphSmoothing<PointT>::Smoother
+GraphTVSmoothing<PointT>::smoother (const core::PointGraph &graph, double gamma) const
 {
   core::TotalVariationParams params;
   params.norm = norm_;
@@ -20,7 +19,9 @@ GraphTVSmoothing<PointT>::smooth (const core::PointGraph &graph, const core::Sig
   params.max_iterations = this->max_iterations_;
   params.num_threads = this->num_threads_;
   params.progress = this->solverProgress ();
-  return core::solveTotalVariation (graph, f, gamma, params, &report);
+  return [&graph, gamma, params] (const core::Signal3 &f, core::SolverReport &report) {
+    return core::solveTotalVariation (graph, f, gamma, params, &report);
+  };
 }
 
 template <typename PointT>
