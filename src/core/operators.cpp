@@ -172,8 +172,8 @@ componentRoots (const PointGraph &graph, std::vector<std::uint8_t> *linked, int 
   };
   if (linked)
     linked->assign (n, 0);
-  // The graph is symmetric and its rows sorted: each edge is joined once, from the
-  // entries of the row of its smaller vertex past the diagonal. Blocks of consecutive
+  // The graph is symmetric: each edge is joined once, from the row of its smaller
+  // vertex (also where a row is not sorted as it should be). Blocks of consecutive
   // vertices join their inner edges in parallel (a join inside a block only touches the
   // block's own vertices) and keep their edges to later blocks, joined afterwards.
   constexpr std::size_t kBlock = std::size_t (1) << 16;
@@ -186,26 +186,20 @@ componentRoots (const PointGraph &graph, std::vector<std::uint8_t> *linked, int 
         {
           const std::size_t end = std::min (n, (b + 1) * kBlock);
           for (std::size_t i = b * kBlock; i < end; ++i)
-          {
-            const std::uint64_t row_end = graph.row_ptr[i + 1];
-            std::uint64_t e = graph.row_ptr[i];
-            bool any = false;  // an entry of positive weight
-            for (; e < row_end && graph.col[e] < i; ++e)
-              any = any || graph.weight[e] > 0.0f;
-            for (; e < row_end; ++e)
+            for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
             {
               if (!(graph.weight[e] > 0.0f))
                 continue;
-              any = true;
+              if (linked)
+                (*linked)[i] = 1;
               const VertexIndex j = graph.col[e];
+              if (j <= i)
+                continue;  // joined from row j (or a loop)
               if (j < end)
                 join (static_cast<VertexIndex> (i), j);
               else
                 outward[b].emplace_back (static_cast<VertexIndex> (i), j);
             }
-            if (linked)
-              (*linked)[i] = any;
-          }
         }
       },
       1);
