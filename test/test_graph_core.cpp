@@ -8,6 +8,7 @@
 #include <pcl_graph_denoise/core/normals.h>
 #include <pcl_graph_denoise/core/operators.h>
 
+#include "components.h"
 #include "synthetic.h"
 #include "test_clouds.h"
 
@@ -1138,9 +1139,11 @@ TEST (Components, MatchABreadthFirstSearchOnAnyNumberOfThreads)
     }
     graph.row_ptr.push_back (graph.col.size ());
   }
-  // Breadth-first over the positive entries.
+  // Breadth-first over the positive entries, from the smallest vertex of each component
+  // (its label).
   GraphComponents expected;
   std::vector<std::uint8_t> seen (n, 0);
+  std::vector<VertexIndex> label_of (n);
   for (std::size_t s = 0; s < n; ++s)
   {
     if (seen[s])
@@ -1148,12 +1151,15 @@ TEST (Components, MatchABreadthFirstSearchOnAnyNumberOfThreads)
     std::vector<std::size_t> queue{s};
     seen[s] = 1;
     for (std::size_t q = 0; q < queue.size (); ++q)
+    {
+      label_of[queue[q]] = static_cast<VertexIndex> (s);
       for (const auto &[j, w] : rows[queue[q]])
         if (w > 0.0f && !seen[j])
         {
           seen[j] = 1;
           queue.push_back (j);
         }
+    }
     ++expected.count;
     expected.isolated += queue.size () == 1;
     expected.largest = std::max (expected.largest, queue.size ());
@@ -1175,6 +1181,12 @@ TEST (Components, MatchABreadthFirstSearchOnAnyNumberOfThreads)
       EXPECT_EQ (parts.count, expected.count) << threads;
       EXPECT_EQ (parts.isolated, expected.isolated) << threads;
       EXPECT_EQ (parts.largest, expected.largest) << threads;
+      std::vector<std::uint8_t> linked;
+      EXPECT_EQ (detail::componentRoots (*g, &linked, threads), label_of) << threads;
+      for (std::size_t v = 0; v < n; ++v)
+        ASSERT_EQ (linked[v] != 0, !rows[v].empty () && std::any_of (rows[v].begin (), rows[v].end (),
+                                                                   [] (const auto &e) { return e.second > 0.0f; }))
+            << v;
     }
 }
 

@@ -571,13 +571,52 @@ TEST (TikhonovSystem, ChecksItsSettingsOnceAndEachSignal)
   not_finite (3, 1) = nan;
   EXPECT_THROW (system.solve (not_finite), std::invalid_argument);
   EXPECT_NO_THROW (system.solve (p.f));  // still usable after a rejected signal
-  // Zero gamma: the identity, converged, also moved into another system.
+  bad = TikhonovParams{};
+  bad.max_iterations = -1;
+  EXPECT_THROW (TikhonovSystem (p.graph, 1.0, bad), std::invalid_argument);
+  // Zero gamma, and a graph without edges: the identity, converged; also moved into
+  // another system, and the one moved from refuses to solve.
   TikhonovSystem identity (p.graph, 0.0);
   TikhonovSystem moved = std::move (identity);
   SolverReport report;
   EXPECT_TRUE ((moved.solve (p.f, &report).array () == p.f.array ()).all ());
   EXPECT_TRUE (report.converged);
   EXPECT_EQ (report.iterations, 0);
+  EXPECT_THROW (identity.solve (p.f), std::logic_error);  // NOLINT: used after the move on purpose
+  PointGraph edgeless;
+  edgeless.order = {0, 1, 2};
+  edgeless.row_ptr.assign (4, 0);
+  const Signal3 three = p.f.topRows (3);
+  for (const TikhonovSolver solver : {TikhonovSolver::CONJUGATE_GRADIENT, TikhonovSolver::CHOLMOD})
+  {
+    TikhonovParams params;
+    params.solver = solver;
+    EXPECT_TRUE ((TikhonovSystem (edgeless, 5.0, params).solve (three, &report).array () ==
+                  three.array ())
+                     .all ());
+    EXPECT_TRUE (report.converged);
+  }
+}
+
+TEST (TikhonovSystem, ScalesItsStoppingTestPerComponent)
+{
+  // Two spheres 10^5 apart: with one scale for the whole cloud (the clusters' distance) the
+  // stopping test would pass at once; per component each is solved as it is alone.
+  const PointMatrix one = toMatrix (synthetic::noisySphere (500, 1.0, 0.02, 81));
+  PointMatrix both (1000, 3);
+  both.topRows (500) = one;
+  both.bottomRows (500) = toMatrix (synthetic::noisySphere (500, 1.0, 0.02, 82));
+  both.bottomRows (500).col (0).array () += 1e5f;
+  const PointGraph g_one = buildKnnGraph (one), g_both = buildKnnGraph (both);
+  TikhonovParams params;
+  params.tolerance = 1e-4;
+  SolverReport report_one, report_both;
+  TikhonovSystem (g_one, 0.5, params).solve (vertexSignal (g_one, one), &report_one);
+  TikhonovSystem (g_both, 0.5, params).solve (vertexSignal (g_both, both), &report_both);
+  EXPECT_GT (report_one.iterations, 0);
+  EXPECT_GE (report_both.iterations, report_one.iterations / 2);
+  EXPECT_TRUE (report_both.converged);
+  EXPECT_LT (report_both.residual, 1e-4);
 }
 
 TEST (Tikhonov, RejectsInvalidInput)

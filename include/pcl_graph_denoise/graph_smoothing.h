@@ -399,7 +399,7 @@ protected:
 
   /** \brief The denoiser of `graph` at strength gamma, set up once for every signal it is
    *  given (the shrinkage correction solves twice on one graph and gamma). The graph must
-   *  outlive it.
+   *  outlive it; it and its copies are not for concurrent calls.
    *  \throws std::exception from the core (invalid parameters, a failed factorisation). */
   virtual Smoother
   smoother (const core::PointGraph &graph, double gamma) const = 0;

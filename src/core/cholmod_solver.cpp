@@ -16,7 +16,7 @@ namespace detail {
 
 namespace {
 
-/** CHOLMOD's workspace, started and finished with the solve. */
+/** CHOLMOD's workspace, started and finished with the factorisation's owner. */
 class Common
 {
 public:
@@ -111,6 +111,7 @@ CholmodFactor::solve (const Signal3 &f) const
 {
   const std::size_t n = impl_->n;
   cholmod_common *c = impl_->common.get ();
+  Signal3 out (static_cast<Eigen::Index> (n), 3);  // before CHOLMOD's buffers: it may throw
   cholmod_dense *b = cholmod_l_allocate_dense (n, 3, n, CHOLMOD_REAL, c);
   check (b != nullptr, c, "allocate_dense");
   auto *bx = static_cast<double *> (b->x);
@@ -118,11 +119,9 @@ CholmodFactor::solve (const Signal3 &f) const
     for (int col = 0; col < 3; ++col)
       bx[col * n + i] = f (i, col);
   cholmod_dense *x = cholmod_l_solve (CHOLMOD_A, impl_->factor, b, c);
-  Signal3 out;
   const bool solved = x != nullptr && c->status >= CHOLMOD_OK;
   if (solved)
   {
-    out.resize (static_cast<Eigen::Index> (n), 3);
     const auto *xx = static_cast<const double *> (x->x);
     for (std::size_t i = 0; i < n; ++i)
       for (int col = 0; col < 3; ++col)

@@ -19,7 +19,8 @@ namespace detail {
 /** For every vertex the smallest vertex of its connected component, counting only
  *  entries of positive weight (union-find, on `num_threads` threads, 0 = all); `linked`,
  *  when given, receives 1 for the vertices with at least one such entry. The labels are
- *  the same for any number of threads. */
+ *  the same for any number of threads. Each edge is read from the row of its smaller
+ *  vertex: the graph must be symmetric, as PointGraph is. */
 std::vector<VertexIndex>
 componentRoots (const PointGraph &graph, std::vector<std::uint8_t> *linked = nullptr,
                 int num_threads = 0);

@@ -310,6 +310,8 @@ TikhonovSystem &TikhonovSystem::operator= (TikhonovSystem &&) noexcept = default
 Signal3
 TikhonovSystem::solve (const Signal3 &f, SolverReport *report) const
 {
+  if (!impl_)
+    throw std::logic_error ("TikhonovSystem::solve on a system moved from");
   const Impl &s = *impl_;
   detail::requireSolverSignal (s.graph, f);
   SolverReport local;

@@ -81,9 +81,9 @@ solveTikhonov (const PointGraph &graph, const Signal3 &f, double gamma,
                const TikhonovParams &params = {}, SolverReport *report = nullptr);
 
 /** \brief The system I + 2 gamma L of one graph and strength, set up once and solved for
- *  any number of right-hand sides (a precompute / solve split): the weighted degrees, the
- *  conjugate gradient's coarse levels and the graph's connected components, or CHOLMOD's
- *  factorisation, come with the constructor. Twicing (the filters' shrinkage correction)
+ *  any number of right-hand sides (a precompute / solve split): the graph's connected
+ *  components (for the stopping test's scale) and the weighted degrees and coarse levels of
+ *  the conjugate gradient, or CHOLMOD's factorisation, come with the constructor. Twicing (the filters' shrinkage correction)
  *  solves the same system twice; solveTikhonov is one system solved once, and each solve
  *  here gives the same result as solveTikhonov with the same settings, bit for bit. The
  *  graph must outlive the system; solve() is not for concurrent calls on one system. */
@@ -94,6 +94,8 @@ public:
    *  \throws std::runtime_error when CHOLMOD cannot factorise the system (see
    *  solveTikhonov). */
   TikhonovSystem (const PointGraph &graph, double gamma, const TikhonovParams &params = {});
+  /** \brief Not from a temporary graph: the system keeps a reference to it. */
+  TikhonovSystem (PointGraph &&graph, double gamma, const TikhonovParams &params = {}) = delete;
   ~TikhonovSystem ();
   /** \brief Takes over another system (which may then only be destroyed or assigned). */
   TikhonovSystem (TikhonovSystem &&) noexcept;
@@ -103,6 +105,7 @@ public:
 
   /** \brief Solves (I + 2 gamma L) x = f for the three columns of f (as solveTikhonov).
    *  \throws std::invalid_argument when f has the wrong size or is not finite.
+   *  \throws std::logic_error on a system moved from.
    *  \throws std::runtime_error as solveTikhonov. */
   Signal3
   solve (const Signal3 &f, SolverReport *report = nullptr) const;
