@@ -98,14 +98,22 @@ detailLength (const Cloud &cloud)
   return curvature > 0.0 ? 1.0 / curvature : 0.0;
 }
 
+/** A filter on `cloud` with the run's settings (--two-ring, --no-twicing). */
+template <typename Filter>
+void
+configure (Filter &filter, const Cloud::Ptr &cloud)
+{
+  filter.setInputCloud (cloud);
+  filter.setAdaptiveSupport (adaptive_support);
+  filter.setShrinkageCorrection (twicing);
+}
+
 template <typename Filter>
 Sample
 sweep (const Cloud::Ptr &cloud, const std::function<double (const Cloud &)> &error)
 {
   Filter filter;
-  filter.setInputCloud (cloud);
-  filter.setAdaptiveSupport (adaptive_support);
-  filter.setShrinkageCorrection (twicing);
+  configure (filter, cloud);
   Cloud out;
   filter.filter (out);
   const double at_default = error (out);  // the run at m = 1
@@ -349,24 +357,15 @@ main (int argc, char **argv)
     {
       const double m = std::exp (a) * std::pow (samples[i].r, b);
       Cloud out;
+      const auto run = [&] (auto &&f) {
+        configure (f, clouds[i]);
+        f.setGamma (m * samples[i].gamma);
+        f.filter (out);
+      };
       if (which == 0)
-      {
-        GraphTikhonovSmoothing<pcl::PointXYZ> f;
-        f.setInputCloud (clouds[i]);
-        f.setAdaptiveSupport (adaptive_support);
-        f.setShrinkageCorrection (twicing);
-        f.setGamma (m * samples[i].gamma);
-        f.filter (out);
-      }
+        run (GraphTikhonovSmoothing<pcl::PointXYZ> ());
       else
-      {
-        GraphTVSmoothing<pcl::PointXYZ> f;
-        f.setInputCloud (clouds[i]);
-        f.setAdaptiveSupport (adaptive_support);
-        f.setShrinkageCorrection (twicing);
-        f.setGamma (m * samples[i].gamma);
-        f.filter (out);
-      }
+        run (GraphTVSmoothing<pcl::PointXYZ> ());
       log_current += std::log (samples[i].error[default_index] / samples[i].best);
       log_risk += std::log (samples[i].risk_error / samples[i].best);
       log_fitted += std::log (of[i]->error (out) / samples[i].best);

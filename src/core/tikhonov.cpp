@@ -250,6 +250,10 @@ struct TikhonovSystem::Impl
   std::vector<VertexIndex> components;                 ///< residualComponents
   std::unique_ptr<detail::CholmodFactor> cholmod;      ///< CHOLMOD
 
+  /** Nothing set up: gamma 0 or a graph without entries, the identity. */
+  bool
+  identity () const { return !coarse && !cholmod; }
+
   /** The conjugate gradient in mixed precision: a correction of x = f solved with its
    *  vectors in single precision, the residual of the result recomputed in double, and,
    *  where it is still above the tolerance, a further correction in double precision. */
@@ -317,7 +321,7 @@ TikhonovSystem::solve (const Signal3 &f, SolverReport *report) const
   SolverReport local;
   SolverReport &out = report ? *report : local;
   out = SolverReport{};
-  if (s.gamma == 0.0 || s.graph.numEntries () == 0)
+  if (s.identity ())
   {
     out.converged = true;
     return f;
@@ -343,8 +347,7 @@ Signal3
 solveTikhonov (const PointGraph &graph, const Signal3 &f, double gamma,
                const TikhonovParams &params, SolverReport *report)
 {
-  detail::requireSolverInput (graph, f, gamma, params.num_threads, params.tolerance,
-                              params.max_iterations);
+  detail::requireSolverSignal (graph, f);  // before the set-up: a bad signal fails at once
   return TikhonovSystem (graph, gamma, params).solve (f, report);
 }
 
