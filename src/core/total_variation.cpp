@@ -45,13 +45,13 @@ constexpr std::size_t kDualBatch = 64;
 /** The differences x_i - x_j of the `count` entries from `first` on (x row-major n x 3),
  *  into d, as T; `row` and `row_end` follow the row of the entry (start them at the
  *  range's first row and its end). */
-template <typename T>
+template <typename Source, typename T>
 PCL_GRAPH_DENOISE_KERNEL inline void
-gatherDifferences (const std::uint64_t *row_ptr, const VertexIndex *col, const double *x,
+gatherDifferences (const std::uint64_t *row_ptr, const VertexIndex *col, const Source *x,
                    std::uint64_t first, std::size_t count, std::size_t &row,
                    std::uint64_t &row_end, T (&d)[3][kDualBatch])
 {
-  const double *xi = x + 3 * row;
+  const Source *xi = x + 3 * row;
   for (std::size_t t = 0; t < count; ++t)
   {
     while (first + t >= row_end)
@@ -59,7 +59,7 @@ gatherDifferences (const std::uint64_t *row_ptr, const VertexIndex *col, const d
       row_end = row_ptr[++row + 1];
       xi = x + 3 * row;
     }
-    const double *xj = x + 3 * std::size_t (col[first + t]);
+    const Source *xj = x + 3 * std::size_t (col[first + t]);
     d[0][t] = static_cast<T> (xi[0] - xj[0]);
     d[1][t] = static_cast<T> (xi[1] - xj[1]);
     d[2][t] = static_cast<T> (xi[2] - xj[2]);
@@ -98,7 +98,7 @@ struct DualPass
   const std::uint64_t *row_ptr;
   const VertexIndex *col;
   const float *root_weight;
-  const double *xbar;
+  const float *xbar;
   float *y[3];
   double *gty;
   float step, gamma;
@@ -313,7 +313,11 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
   // and the primal at f - grad^T y cuts the iterations several times.
   const auto rows = static_cast<Eigen::Index> (n);
   Signal3 x = detail::matrixOnHugePages<Signal3> (rows);
-  Signal3 xbar = detail::matrixOnHugePages<Signal3> (rows);
+  // x-bar only feeds the dual step's differences: single precision, about f's mean (so
+  // that coordinates far from the origin keep their differences).
+  const Eigen::RowVector3d origin = f.colwise ().mean ();
+  using FloatSignal = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>;
+  FloatSignal xbar = detail::matrixOnHugePages<FloatSignal> (rows);
   Signal3 gty = detail::matrixOnHugePages<Signal3> (rows);
   Duals y = detail::matrixOnHugePages<Duals> (static_cast<Eigen::Index> (graph.numEntries ()));
   // f's total variation comes with the warm start (the cold start's objective), summed
@@ -347,7 +351,10 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
                           : std::abs (d[0]) + std::abs (d[1]) + std::abs (d[2]));
       }
       for (int c = 0; c < 3; ++c)
-        x (i, c) = xbar (i, c) = f (i, c) - acc[c];
+      {
+        x (i, c) = f (i, c) - acc[c];
+        xbar (i, c) = static_cast<float> (x (i, c) - origin[c]);
+      }
     }
     return variation;
   };
@@ -372,7 +379,7 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
   {
     y.setZero ();
     x = f;
-    xbar = f;
+    xbar = (f.rowwise () - origin).cast<float> ();
   }
   const double start_objective = std::min (warm_objective, cold_objective);
   const double f_norm2 = f.squaredNorm ();
@@ -466,7 +473,8 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
     const double theta = 1.0 / std::sqrt (1.0 + 2.0 * scale * min_tau);
     const auto primal_step = [&, scale] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
       double *__restrict xs = x.data ();
-      double *__restrict xbars = xbar.data ();
+      float *__restrict xbars = xbar.data ();
+      const double o[3] = {origin[0], origin[1], origin[2]};
       const double *__restrict fs = f.data ();
       const double *__restrict gtys = gty.data ();
       const double *__restrict taus = tau.data ();
@@ -478,7 +486,7 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
           const double previous = xs[c];
           const double next = (previous - step_i * gtys[c] + step_i * fs[c]) / (1.0 + step_i);
           xs[c] = next;
-          xbars[c] = next + theta * (next - previous);
+          xbars[c] = static_cast<float> (next + theta * (next - previous) - o[c - 3 * i]);
         }
       }
     };
