@@ -744,6 +744,26 @@ TEST (TotalVariationSolver, ZeroGammaIsTheIdentityAndThreadsDoNotMatter)
                solveTotalVariation (p.graph, p.f, 0.01, two));
 }
 
+TEST (TotalVariationSolver, ASignalFarFromTheOriginIsSolvedAsWellAsNearIt)
+{
+  // The dual step's differences are taken in single precision, about the signal's mean:
+  // shifting the signal by 10^6 (where a float's step is 0.06, far more than the points'
+  // spacing) shifts the minimiser by as much and changes nothing else.
+  const Problem p (2000, 0.01);
+  const Eigen::RowVector3d shift (1e6, -3e5, 2e6);
+  TotalVariationParams params;
+  params.tolerance = 1e-6;
+  SolverReport near_report, far_report;
+  const Signal3 near = solveTotalVariation (p.graph, p.f, 0.003, params, &near_report);
+  const Signal3 shifted = p.f.rowwise () + shift;
+  const Signal3 far = solveTotalVariation (p.graph, shifted, 0.003, params, &far_report);
+  EXPECT_TRUE (near_report.converged);
+  EXPECT_TRUE (far_report.converged);
+  EXPECT_GT (near_report.iterations, 10);
+  EXPECT_LT (((far.rowwise () - shift) - near).cwiseAbs ().maxCoeff (), 1e-7);
+  EXPECT_GT ((near - p.f).cwiseAbs ().maxCoeff (), 1e-3);  // it did smooth
+}
+
 TEST (TotalVariationSolver, AHugeGammaStaysWithinTheInputsBoundingBox)
 {
   // The minimiser lies within f's bounding box and tends to its mean as gamma grows. The
