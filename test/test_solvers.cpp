@@ -904,6 +904,95 @@ TEST (TotalVariationSolver, RejectsInvalidInput)
   EXPECT_THROW (solveTotalVariation (p.graph, p.f, 1.0, bad), std::invalid_argument);
 }
 
+TEST (TotalVariationSystem, SolvesEverySignalAsAFreshSystemWould)
+{
+  // One system solves f, then its own result (twicing's second solve), then f again: its
+  // working arrays stay from one solve to the next, but nothing of a solve may leak into
+  // the next. Also at a gamma whose solve starts cold (duals 0) for one signal and warm
+  // for the next, in both norms.
+  const Problem p (3000, 0.01);
+  for (const TotalVariationNorm norm : {TotalVariationNorm::ISOTROPIC, TotalVariationNorm::ANISOTROPIC})
+  {
+    TotalVariationParams params;
+    params.norm = norm;
+    params.tolerance = 1e-5;
+    const TotalVariationSystem system (p.graph, 0.003, params);
+    SolverReport first, second, again, fresh;
+    const Signal3 x1 = system.solve (p.f, &first);
+    const Signal3 x2 = system.solve (x1, &second);
+    const Signal3 x3 = system.solve (p.f, &again);
+    EXPECT_TRUE (x3 == x1);
+    EXPECT_EQ (again.iterations, first.iterations);
+    EXPECT_EQ (again.residual, first.residual);
+    EXPECT_TRUE (solveTotalVariation (p.graph, x1, 0.003, params, &fresh) == x2);
+    EXPECT_EQ (second.iterations, fresh.iterations);
+    EXPECT_EQ (second.residual, fresh.residual);
+    EXPECT_TRUE (first.converged && second.converged);
+    EXPECT_GT (first.iterations, 5);
+    EXPECT_FALSE (x2 == x1);
+
+    // gamma 10: the warm start of f lies far off (cold), that of 10^4 f does not.
+    params.max_iterations = 40;
+    const TotalVariationSystem strong (p.graph, 10.0, params);
+    const Signal3 wide = 1e4 * p.f;
+    SolverReport cold, warm, cold_fresh, warm_fresh;
+    const Signal3 c1 = strong.solve (p.f, &cold);
+    const Signal3 w1 = strong.solve (wide, &warm);
+    const Signal3 c2 = strong.solve (p.f, &cold_fresh);
+    EXPECT_TRUE (c2 == c1);
+    EXPECT_EQ (cold_fresh.residual, cold.residual);
+    EXPECT_TRUE (solveTotalVariation (p.graph, wide, 10.0, params, &warm_fresh) == w1);
+    EXPECT_EQ (warm_fresh.residual, warm.residual);
+  }
+}
+
+TEST (TotalVariationSystem, ChecksItsSettingsOnceAndEachSignal)
+{
+  const Problem p (200);
+  const double nan = std::numeric_limits<double>::quiet_NaN ();
+  for (const double gamma : {-1.0, nan, std::numeric_limits<double>::infinity (), 1e39})
+    EXPECT_THROW (TotalVariationSystem (p.graph, gamma), std::invalid_argument) << gamma;
+  TotalVariationParams bad;
+  bad.tolerance = 0.0;
+  EXPECT_THROW (TotalVariationSystem (p.graph, 1.0, bad), std::invalid_argument);
+  bad = TotalVariationParams{};
+  bad.num_threads = -1;
+  EXPECT_THROW (TotalVariationSystem (p.graph, 1.0, bad), std::invalid_argument);
+  bad = TotalVariationParams{};
+  bad.max_iterations = -1;
+  EXPECT_THROW (TotalVariationSystem (p.graph, 1.0, bad), std::invalid_argument);
+  const TotalVariationSystem system (p.graph, 0.01);
+  EXPECT_THROW (system.solve (p.f.topRows (10)), std::invalid_argument);
+  Signal3 not_finite = p.f;
+  not_finite (3, 1) = nan;
+  EXPECT_THROW (system.solve (not_finite), std::invalid_argument);
+  SolverReport report;
+  EXPECT_FALSE (system.solve (p.f, &report) == p.f);  // still usable after a rejected signal
+  EXPECT_TRUE (report.converged);
+  // Zero gamma, a graph without edges and one whose only edge has weight 0: the identity,
+  // converged; also moved into another system, and the one moved from refuses to solve.
+  TotalVariationSystem identity (p.graph, 0.0);
+  TotalVariationSystem moved = std::move (identity);
+  EXPECT_TRUE (moved.solve (p.f, &report) == p.f);
+  EXPECT_TRUE (report.converged);
+  EXPECT_EQ (report.iterations, 0);
+  EXPECT_THROW (identity.solve (p.f), std::logic_error);  // NOLINT: used after the move on purpose
+  PointGraph edgeless;
+  edgeless.order = {0, 1, 2};
+  edgeless.row_ptr.assign (4, 0);
+  const Signal3 three = p.f.topRows (3);
+  EXPECT_TRUE (TotalVariationSystem (edgeless, 5.0).solve (three, &report) == three);
+  EXPECT_TRUE (report.converged);
+  PointGraph weightless;
+  weightless.order = {0, 1};
+  weightless.row_ptr = {0, 1, 2};
+  weightless.col = {1, 0};
+  weightless.weight = {0.0f, 0.0f};
+  const Signal3 two = p.f.topRows (2);
+  EXPECT_TRUE (TotalVariationSystem (weightless, 5.0).solve (two, &report) == two);
+  EXPECT_TRUE (report.converged);
+}
+
 /** estimateNoise on the default k-NN graph of a cloud. */
 NoiseEstimate
 noiseOf (const PointMatrix &points, int num_threads = 0)

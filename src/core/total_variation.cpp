@@ -35,6 +35,9 @@ namespace {
  *  entries runs over consecutive floats. */
 using Duals = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::ColMajor>;
 
+/** x-bar of the solver, in single precision (see TotalVariationSystem::Impl::solve). */
+using FloatSignal = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
 /** The entries of a vertex range are updated a batch of consecutive entries at a time
  *  (across row ends): their differences gathered first, then the dual step, the projection
  *  and the weighting by sqrt(w) over the batch as over plain arrays (vectorised: the file
@@ -249,23 +252,47 @@ totalVariationObjective (const PointGraph &graph, const Signal3 &f, const Signal
   return 0.5 * (x - f).squaredNorm () + gamma * totalVariation (graph, x, norm, 0);
 }
 
-Signal3
-solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
-                     const TotalVariationParams &params, SolverReport *report)
+struct TotalVariationSystem::Impl
 {
-  detail::requireSolverInput (graph, f, gamma, params.num_threads, params.tolerance,
-                              params.max_iterations);
-
-  SolverReport local;
-  SolverReport &out = report ? *report : local;
-  out = SolverReport{};
-  const std::size_t n = graph.numVertices ();
-  const int threads = params.num_threads;
-  if (gamma == 0.0 || graph.numEntries () == 0)
+  Impl (const PointGraph &g, double strength, const TotalVariationParams &p)
+  : graph (g), gamma (strength), params (p)
   {
-    out.converged = true;
-    return f;
   }
+
+  const PointGraph &graph;
+  const double gamma;
+  const TotalVariationParams params;
+  /** Diagonal preconditioning (Pock and Chambolle 2011, alpha = 1): each vertex's primal
+   *  step is the inverse of its row sum of |grad|, tau_i = 1 / sum_j sqrt(w_ij), and each
+   *  entry's dual step sigma_e = 1 / (2 sqrt(w_e)), so that sigma_e sqrt(w_e) = 1/2 and
+   *  the dual update needs no weight. Empty: nothing set up (gamma 0, or no vertex with a
+   *  weighted edge), the identity. */
+  std::vector<float> root_weight;
+  std::vector<double> tau;
+  /** The graph's components (detail::residualComponents: empty for one): x-bar is stored
+   *  about each component's root. */
+  std::vector<VertexIndex> component_root;
+  /** The smallest positive tau: the data term's modulus of strong convexity in the
+   *  preconditioned metric, for the acceleration. */
+  double min_tau = 0.0;
+  /** The working arrays, kept from one solve to the next (each solve sets them all before
+   *  it reads them): the duals, grad^T y, and x-bar (see solve). */
+  mutable Duals y;
+  mutable Signal3 gty;
+  mutable FloatSignal xbar;
+
+  bool
+  identity () const { return root_weight.empty (); }
+
+  Signal3
+  solve (const Signal3 &f, SolverReport &out) const;
+};
+
+TotalVariationSystem::TotalVariationSystem (const PointGraph &graph, double gamma,
+                                            const TotalVariationParams &params)
+{
+  detail::requireSolverSettings (gamma, params.num_threads, params.tolerance,
+                                 params.max_iterations);
   // The duals are single precision and bounded by gamma.
   if (!(gamma <= double (std::numeric_limits<float>::max ())))
   {
@@ -276,22 +303,10 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
                    gamma, double (std::numeric_limits<float>::max ()));
     throw std::invalid_argument (text);
   }
-
-  // Diagonal preconditioning (Pock and Chambolle 2011, alpha = 1): each vertex's primal
-  // step is the inverse of its row sum of |grad|, tau_i = 1 / sum_j sqrt(w_ij), and each
-  // entry's dual step sigma_e = 1 / (2 sqrt(w_e)), so that sigma_e sqrt(w_e) = 1/2 and the
-  // dual update needs no weight. A global `scale` multiplies the primal steps and
-  // divides the dual ones, shrunk as in Chambolle and Pock's accelerated algorithm 2 with
-  // the data term's modulus of strong convexity in the preconditioned metric, the
-  // smallest tau (with the mean tau instead, the fountain scan's weakly linked pieces
-  // diverged). On noisy spheres this halves the iterations at strong smoothing.
-  const float bound_gamma = static_cast<float> (gamma);
-  std::vector<float> root_weight;
-  detail::resizeOnHugePages (root_weight, graph.numEntries ());
-  detail::parallelFor (root_weight.size (), threads, [&] (std::size_t begin, std::size_t end) {
-    for (std::size_t e = begin; e < end; ++e)
-      root_weight[e] = std::sqrt (graph.weight[e]);
-  });
+  impl_ = std::make_unique<Impl> (graph, gamma, params);
+  if (gamma == 0.0 || graph.numEntries () == 0)
+    return;  // the identity
+  const int threads = params.num_threads;
   std::vector<double> tau = detail::rootDegree (graph, threads);
   double min_tau = std::numeric_limits<double>::infinity ();
   for (double &t : tau)
@@ -300,11 +315,59 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
     if (t > 0.0)
       min_tau = std::min (min_tau, t);
   }
-  if (!std::isfinite (min_tau))  // no vertex with a weighted edge
+  if (!std::isfinite (min_tau))  // no vertex with a weighted edge: the identity
+    return;
+  Impl &s = *impl_;
+  s.tau = std::move (tau);
+  s.min_tau = min_tau;
+  s.component_root = detail::residualComponents (graph, threads);
+  detail::resizeOnHugePages (s.root_weight, graph.numEntries ());
+  detail::parallelFor (s.root_weight.size (), threads, [&] (std::size_t begin, std::size_t end) {
+    for (std::size_t e = begin; e < end; ++e)
+      s.root_weight[e] = std::sqrt (graph.weight[e]);
+  });
+}
+
+TotalVariationSystem::~TotalVariationSystem () = default;
+TotalVariationSystem::TotalVariationSystem (TotalVariationSystem &&) noexcept = default;
+TotalVariationSystem &TotalVariationSystem::operator= (TotalVariationSystem &&) noexcept = default;
+
+Signal3
+TotalVariationSystem::solve (const Signal3 &f, SolverReport *report) const
+{
+  if (!impl_)
+    throw std::logic_error ("TotalVariationSystem::solve on a system moved from");
+  detail::requireSolverSignal (impl_->graph, f);
+  SolverReport local;
+  SolverReport &out = report ? *report : local;
+  out = SolverReport{};
+  if (impl_->identity ())
   {
     out.converged = true;
     return f;
   }
+  return impl_->solve (f, out);
+}
+
+Signal3
+solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
+                     const TotalVariationParams &params, SolverReport *report)
+{
+  detail::requireSolverSignal (graph, f);  // before the set-up: a bad signal fails at once
+  return TotalVariationSystem (graph, gamma, params).solve (f, report);
+}
+
+Signal3
+TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
+{
+  const std::size_t n = graph.numVertices ();
+  const int threads = params.num_threads;
+  // A global `scale` multiplies the primal steps and divides the dual ones, shrunk as in
+  // Chambolle and Pock's accelerated algorithm 2 with the data term's modulus of strong
+  // convexity in the preconditioned metric, the smallest tau (with the mean tau instead,
+  // the fountain scan's weakly linked pieces diverged). On noisy spheres this halves the
+  // iterations at strong smoothing.
+  const float bound_gamma = static_cast<float> (gamma);
   double scale = 1.0;
 
   // Warm start: every edge difference of a point cloud is non-zero, so nearly every
@@ -315,14 +378,20 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
   Signal3 x = detail::matrixOnHugePages<Signal3> (rows);
   // x-bar only feeds the dual step's differences: single precision (the gather of the
   // neighbours' x-bar is the dual pass's stall; half the bytes, about 10% less time per
-  // iteration at a million points), about f's mean, so that a signal far from the origin
-  // keeps its differences (no coarser than a PCL cloud's own float coordinates). The
-  // iterate x, the objective and the gap stay in double.
-  const Eigen::RowVector3d origin = f.colwise ().mean ();
-  using FloatSignal = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>;
-  FloatSignal xbar = detail::matrixOnHugePages<FloatSignal> (rows);
-  Signal3 gty = detail::matrixOnHugePages<Signal3> (rows);
-  Duals y = detail::matrixOnHugePages<Duals> (static_cast<Eigen::Index> (graph.numEntries ()));
+  // iteration at a million points), each vertex's about f at its component's root, so
+  // that a cloud far from the origin, or one point far from the rest, keeps its
+  // differences (within a component no coarser than a PCL cloud's own float
+  // coordinates). The iterate x, the objective and the gap stay in double.
+  const VertexIndex *roots = component_root.empty () ? nullptr : component_root.data ();
+  const auto originOf = [&] (std::size_t i) {
+    return f.data () + 3 * std::size_t (roots ? roots[i] : 0);
+  };
+  if (y.rows () == 0)
+  {
+    y = detail::matrixOnHugePages<Duals> (static_cast<Eigen::Index> (graph.numEntries ()));
+    gty = detail::matrixOnHugePages<Signal3> (rows);
+    xbar = detail::matrixOnHugePages<FloatSignal> (rows);
+  }
   // f's total variation comes with the warm start (the cold start's objective), summed
   // over the same entries.
   const auto warm_kernel = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
@@ -356,7 +425,7 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
       for (int c = 0; c < 3; ++c)
       {
         x (i, c) = f (i, c) - acc[c];
-        xbar (i, c) = static_cast<float> (x (i, c) - origin[c]);
+        xbar (i, c) = static_cast<float> (x (i, c) - originOf (i)[c]);
       }
     }
     return variation;
@@ -382,7 +451,9 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
   {
     y.setZero ();
     x = f;
-    xbar = (f.rowwise () - origin).cast<float> ();
+    for (std::size_t i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c)
+        xbar (i, c) = static_cast<float> (f (i, c) - originOf (i)[c]);
   }
   const double start_objective = std::min (warm_objective, cold_objective);
   const double f_norm2 = f.squaredNorm ();
@@ -477,13 +548,13 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
     const auto primal_step = [&, scale] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
       double *__restrict xs = x.data ();
       float *__restrict xbars = xbar.data ();
-      const double o[3] = {origin[0], origin[1], origin[2]};
       const double *__restrict fs = f.data ();
       const double *__restrict gtys = gty.data ();
       const double *__restrict taus = tau.data ();
       for (std::size_t i = begin; i < end; ++i)
       {
         const double step_i = scale * taus[i];
+        const double *o = originOf (i);
         for (std::size_t c = 3 * i; c < 3 * i + 3; ++c)
         {
           const double previous = xs[c];

@@ -156,6 +156,43 @@ Signal3
 solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
                      const TotalVariationParams &params = {}, SolverReport *report = nullptr);
 
+/** \brief The total-variation problem of one graph and strength, set up once and solved for
+ *  any number of signals (as TikhonovSystem): the entries' sqrt(w) and the vertices' steps
+ *  come with the constructor, and the solver's working arrays (the duals, one per stored
+ *  entry, and two vertex signals) stay from one solve to the next instead of being
+ *  allocated and faulted in again. Twicing (the filters' shrinkage correction) solves the
+ *  same problem twice; solveTotalVariation is one system solved once, and each solve here
+ *  gives the same result as solveTotalVariation with the same settings, bit for bit. The
+ *  graph must outlive the system; solve() is not for concurrent calls on one system. */
+class TotalVariationSystem
+{
+public:
+  /** \throws std::invalid_argument on invalid parameters or gamma (also a gamma above the
+   *  largest float: the duals are single precision). */
+  TotalVariationSystem (const PointGraph &graph, double gamma,
+                        const TotalVariationParams &params = {});
+  /** \brief Not from a temporary graph: the system keeps a reference to it. */
+  TotalVariationSystem (PointGraph &&graph, double gamma,
+                        const TotalVariationParams &params = {}) = delete;
+  ~TotalVariationSystem ();
+  /** \brief Takes over another system (which may then only be destroyed or assigned). */
+  TotalVariationSystem (TotalVariationSystem &&) noexcept;
+  /** \brief Takes over another system (which may then only be destroyed or assigned). */
+  TotalVariationSystem &
+  operator= (TotalVariationSystem &&) noexcept;
+
+  /** \brief The minimiser of 1/2 |x - f|^2 + gamma TV(x) (as solveTotalVariation).
+   *  \throws std::invalid_argument when f has the wrong size or is not finite.
+   *  \throws std::logic_error on a system moved from.
+   *  \throws std::runtime_error as solveTotalVariation. */
+  Signal3
+  solve (const Signal3 &f, SolverReport *report = nullptr) const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 /** \brief The total-variation objective 1/2 |x - f|^2 + gamma TV(x). */
 double
 totalVariationObjective (const PointGraph &graph, const Signal3 &f, const Signal3 &x,

@@ -256,8 +256,9 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
         return solved;
       };
       const core::Signal3 smoothed = solve (signal);
-      core::Signal3 x =
-          shrinkage_correction_ ? core::Signal3 (2.0 * smoothed - solve (smoothed)) : smoothed;
+      core::Signal3 x = shrinkage_correction_ ? solve (smoothed) : smoothed;
+      if (shrinkage_correction_)
+        x = 2.0 * smoothed - x;  // in place: no third signal while the solver's arrays stay
       smooth = nullptr;
       if (quadric)
         x = core::quadricDisplacement (g, signal, x, noise, num_threads_,

@@ -7,6 +7,8 @@
 #include <pcl_graph_denoise/graph_tv_smoothing.h>
 #include <pcl_graph_denoise/impl/graph_smoothing.hpp>
 
+#include <memory>
+
 namespace pcl_graph_denoise {
 
 template <typename PointT>
@@ -19,8 +21,9 @@ GraphTVSmoothing<PointT>::smoother (const core::PointGraph &graph, double gamma)
   params.max_iterations = this->max_iterations_;
   params.num_threads = this->num_threads_;
   params.progress = this->solverProgress ();
-  return [&graph, gamma, params] (const core::Signal3 &f, core::SolverReport &report) {
-    return core::solveTotalVariation (graph, f, gamma, params, &report);
+  auto system = std::make_shared<const core::TotalVariationSystem> (graph, gamma, params);
+  return [system] (const core::Signal3 &f, core::SolverReport &report) {
+    return system->solve (f, &report);
   };
 }
 
