@@ -26,6 +26,7 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <type_traits>
 #include <stdexcept>
 
 using namespace pcl_graph_denoise;
@@ -746,9 +747,10 @@ TEST (TotalVariationSolver, ZeroGammaIsTheIdentityAndThreadsDoNotMatter)
 
 TEST (TotalVariationSolver, ASignalFarFromTheOriginIsSolvedAsWellAsNearIt)
 {
-  // The dual step's differences are taken in single precision, about the signal's mean:
-  // shifting the signal by 10^6 (where a float's step is 0.06, far more than the points'
-  // spacing) shifts the minimiser by as much and changes nothing else.
+  // The dual step's differences are taken in single precision, about a point of the
+  // vertex's component: shifting the signal by 10^6 (where a float's step is 0.06, far
+  // more than the points' spacing) shifts the minimiser by as much and changes nothing
+  // else. (One point far from the rest: SmoothingQuality.AFarPointLeavesTheRestAsItWas.)
   const Problem p (2000, 0.01);
   const Eigen::RowVector3d shift (1e6, -3e5, 2e6);
   TotalVariationParams params;
@@ -762,6 +764,34 @@ TEST (TotalVariationSolver, ASignalFarFromTheOriginIsSolvedAsWellAsNearIt)
   EXPECT_GT (near_report.iterations, 10);
   EXPECT_LT (((far.rowwise () - shift) - near).cwiseAbs ().maxCoeff (), 1e-7);
   EXPECT_GT ((near - p.f).cwiseAbs ().maxCoeff (), 1e-3);  // it did smooth
+
+  // Two spheres 50 apart in one graph (two components), the signal of the one holding
+  // vertex 0 shifted by 10^6: each component keeps its own origin, so the other one is
+  // solved as before (with one origin for all, its differences would be rounded to 0.06).
+  PointMatrix points (1200, 3);
+  points.topRows (600) = toMatrix (synthetic::noisySphere (600, 1.0, 0.01, 21));
+  points.bottomRows (600) = toMatrix (synthetic::noisySphere (600, 1.0, 0.01, 22));
+  points.bottomRows (600).col (1).array () += 50.0f;
+  const PointGraph g = buildKnnGraph (points);
+  ASSERT_EQ (connectedComponents (g).count, 2u);
+  const Signal3 f = vertexSignal (g, points);
+  const bool first_low = g.order[0] < 600;  // vertex 0's sphere
+  Signal3 moved = f;
+  for (Eigen::Index v = 0; v < moved.rows (); ++v)
+    if ((g.order[std::size_t (v)] < 600) == first_low)
+      moved.row (v) += shift;
+  for (const int threads : {1, 2})
+  {
+    params.num_threads = threads;
+    const Signal3 alone = solveTotalVariation (g, f, 0.003, params);
+    const Signal3 with_far = solveTotalVariation (g, moved, 0.003, params);
+    double other = 0.0;
+    for (Eigen::Index v = 0; v < f.rows (); ++v)
+      if ((g.order[std::size_t (v)] < 600) != first_low)
+        other = std::max (other, (with_far.row (v) - alone.row (v)).cwiseAbs ().maxCoeff ());
+    EXPECT_LT (other, 1e-7) << threads << " threads";
+    EXPECT_GT ((alone - f).cwiseAbs ().maxCoeff (), 1e-3);
+  }
 }
 
 TEST (TotalVariationSolver, AHugeGammaStaysWithinTheInputsBoundingBox)
@@ -931,20 +961,34 @@ TEST (TotalVariationSystem, SolvesEverySignalAsAFreshSystemWould)
     EXPECT_GT (first.iterations, 5);
     EXPECT_FALSE (x2 == x1);
 
-    // gamma 10: the warm start of f lies far off (cold), that of 10^4 f does not.
-    params.max_iterations = 40;
-    const TotalVariationSystem strong (p.graph, 10.0, params);
+    // gamma 10: the warm start of f lies far off (cold), that of 10^4 f does not. (With
+    // no iteration the solve returns its start: f when cold, the warm start else.)
     const Signal3 wide = 1e4 * p.f;
+    params.max_iterations = 0;
+    TotalVariationSystem start (p.graph, 10.0, params);
+    EXPECT_TRUE (start.solve (p.f) == p.f);
+    EXPECT_FALSE (start.solve (wide) == wide);
+    params.max_iterations = 40;
+    TotalVariationSystem strong (p.graph, 10.0, params);
     SolverReport cold, warm, cold_fresh, warm_fresh;
     const Signal3 c1 = strong.solve (p.f, &cold);
     const Signal3 w1 = strong.solve (wide, &warm);
-    const Signal3 c2 = strong.solve (p.f, &cold_fresh);
+    start = std::move (strong);  // move assignment: the system goes along with its arrays
+    const Signal3 c2 = start.solve (p.f, &cold_fresh);
     EXPECT_TRUE (c2 == c1);
     EXPECT_EQ (cold_fresh.residual, cold.residual);
     EXPECT_TRUE (solveTotalVariation (p.graph, wide, 10.0, params, &warm_fresh) == w1);
     EXPECT_EQ (warm_fresh.residual, warm.residual);
   }
 }
+
+// The systems keep a reference to their graph: a temporary one does not compile.
+static_assert (!std::is_constructible<TikhonovSystem, PointGraph &&, double>::value, "");
+static_assert (!std::is_constructible<TikhonovSystem, const PointGraph &&, double>::value, "");
+static_assert (std::is_constructible<TikhonovSystem, const PointGraph &, double>::value, "");
+static_assert (!std::is_constructible<TotalVariationSystem, PointGraph &&, double>::value, "");
+static_assert (!std::is_constructible<TotalVariationSystem, const PointGraph &&, double>::value, "");
+static_assert (std::is_constructible<TotalVariationSystem, const PointGraph &, double>::value, "");
 
 TEST (TotalVariationSystem, ChecksItsSettingsOnceAndEachSignal)
 {
@@ -983,6 +1027,8 @@ TEST (TotalVariationSystem, ChecksItsSettingsOnceAndEachSignal)
   const Signal3 three = p.f.topRows (3);
   EXPECT_TRUE (TotalVariationSystem (edgeless, 5.0).solve (three, &report) == three);
   EXPECT_TRUE (report.converged);
+  // Beyond the largest float the duals cannot hold gamma; without edges nothing is solved.
+  EXPECT_TRUE (TotalVariationSystem (edgeless, 1e39).solve (three) == three);
   PointGraph weightless;
   weightless.order = {0, 1};
   weightless.row_ptr = {0, 1, 2};

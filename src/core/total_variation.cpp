@@ -293,8 +293,9 @@ TotalVariationSystem::TotalVariationSystem (const PointGraph &graph, double gamm
 {
   detail::requireSolverSettings (gamma, params.num_threads, params.tolerance,
                                  params.max_iterations);
-  // The duals are single precision and bounded by gamma.
-  if (!(gamma <= double (std::numeric_limits<float>::max ())))
+  const bool identity = gamma == 0.0 || graph.numEntries () == 0;
+  // The duals are single precision and bounded by gamma (unless nothing is solved).
+  if (!identity && !(gamma <= double (std::numeric_limits<float>::max ())))
   {
     char text[160];
     std::snprintf (text, sizeof (text),
@@ -304,8 +305,8 @@ TotalVariationSystem::TotalVariationSystem (const PointGraph &graph, double gamm
     throw std::invalid_argument (text);
   }
   impl_ = std::make_unique<Impl> (graph, gamma, params);
-  if (gamma == 0.0 || graph.numEntries () == 0)
-    return;  // the identity
+  if (identity)
+    return;
   const int threads = params.num_threads;
   std::vector<double> tau = detail::rootDegree (graph, threads);
   double min_tau = std::numeric_limits<double>::infinity ();
@@ -378,19 +379,26 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
   Signal3 x = detail::matrixOnHugePages<Signal3> (rows);
   // x-bar only feeds the dual step's differences: single precision (the gather of the
   // neighbours' x-bar is the dual pass's stall; half the bytes, about 10% less time per
-  // iteration at a million points), each vertex's about f at its component's root, so
-  // that a cloud far from the origin, or one point far from the rest, keeps its
-  // differences (within a component no coarser than a PCL cloud's own float
-  // coordinates). The iterate x, the objective and the gap stay in double.
+  // iteration at a million points), each vertex's about f at its component's root (its
+  // smallest vertex, first on the Morton curve), so that a cloud far from the origin, or
+  // one point far from the rest, keeps its differences: each is rounded to about 2^-24
+  // times the component's extent (within twice the resolution of a float coordinate at
+  // the component's far end; at a thousand spacings across, 6e-5 of a spacing), which
+  // only perturbs the dual steps. Every entry with a weight joins two vertices of one
+  // component (the graph is symmetric), so its difference keeps x-bar's origin out and
+  // stays exactly odd in (i, j). The iterate x, the objective and the gap stay in double.
   const VertexIndex *roots = component_root.empty () ? nullptr : component_root.data ();
   const auto originOf = [&] (std::size_t i) {
     return f.data () + 3 * std::size_t (roots ? roots[i] : 0);
   };
-  if (y.rows () == 0)
+  if (xbar.rows () == 0)  // the first solve; all three, or none should one fail
   {
-    y = detail::matrixOnHugePages<Duals> (static_cast<Eigen::Index> (graph.numEntries ()));
-    gty = detail::matrixOnHugePages<Signal3> (rows);
-    xbar = detail::matrixOnHugePages<FloatSignal> (rows);
+    Duals new_y = detail::matrixOnHugePages<Duals> (static_cast<Eigen::Index> (graph.numEntries ()));
+    Signal3 new_gty = detail::matrixOnHugePages<Signal3> (rows);
+    FloatSignal new_xbar = detail::matrixOnHugePages<FloatSignal> (rows);
+    y.swap (new_y);
+    gty.swap (new_gty);
+    xbar.swap (new_xbar);
   }
   // f's total variation comes with the warm start (the cold start's objective), summed
   // over the same entries.

@@ -96,6 +96,8 @@ public:
   TikhonovSystem (const PointGraph &graph, double gamma, const TikhonovParams &params = {});
   /** \brief Not from a temporary graph: the system keeps a reference to it. */
   TikhonovSystem (PointGraph &&graph, double gamma, const TikhonovParams &params = {}) = delete;
+  /** \brief Not from a temporary graph: the system keeps a reference to it. */
+  TikhonovSystem (const PointGraph &&graph, double gamma, const TikhonovParams &params = {}) = delete;
   ~TikhonovSystem ();
   /** \brief Takes over another system (which may then only be destroyed or assigned). */
   TikhonovSystem (TikhonovSystem &&) noexcept;
@@ -157,22 +159,26 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
                      const TotalVariationParams &params = {}, SolverReport *report = nullptr);
 
 /** \brief The total-variation problem of one graph and strength, set up once and solved for
- *  any number of signals (as TikhonovSystem): the entries' sqrt(w) and the vertices' steps
- *  come with the constructor, and the solver's working arrays (the duals, one per stored
- *  entry, and two vertex signals) stay from one solve to the next instead of being
- *  allocated and faulted in again. Twicing (the filters' shrinkage correction) solves the
- *  same problem twice; solveTotalVariation is one system solved once, and each solve here
- *  gives the same result as solveTotalVariation with the same settings, bit for bit. The
- *  graph must outlive the system; solve() is not for concurrent calls on one system. */
+ *  any number of signals (as TikhonovSystem): the entries' sqrt(w), the vertices' steps and
+ *  the graph's components come with the constructor, and the solver's working arrays (the
+ *  duals, 12 bytes per stored entry, and 36 bytes per vertex) are allocated by the first
+ *  solve and kept for the system's lifetime instead of being allocated and faulted in
+ *  again. Twicing (the filters' shrinkage correction) solves the same problem twice;
+ *  solveTotalVariation is one system solved once, and each solve here gives the same result
+ *  as solveTotalVariation with the same settings, bit for bit. The graph must outlive the
+ *  system; solve() is not for concurrent calls on one system (it writes those arrays). */
 class TotalVariationSystem
 {
 public:
   /** \throws std::invalid_argument on invalid parameters or gamma (also a gamma above the
-   *  largest float: the duals are single precision). */
+   *  largest float where the graph has entries: the duals are single precision). */
   TotalVariationSystem (const PointGraph &graph, double gamma,
                         const TotalVariationParams &params = {});
   /** \brief Not from a temporary graph: the system keeps a reference to it. */
   TotalVariationSystem (PointGraph &&graph, double gamma,
+                        const TotalVariationParams &params = {}) = delete;
+  /** \brief Not from a temporary graph: the system keeps a reference to it. */
+  TotalVariationSystem (const PointGraph &&graph, double gamma,
                         const TotalVariationParams &params = {}) = delete;
   ~TotalVariationSystem ();
   /** \brief Takes over another system (which may then only be destroyed or assigned). */
