@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 namespace pcl_graph_denoise {
 namespace core {
@@ -95,13 +96,15 @@ batchVariation (const double (&d)[3][kDualBatch], const float *weight, std::size
 }
 
 /** What one dual pass reads and writes, as plain arrays (row-major n x 3 for the
- *  vertex signals, one array per coordinate for the duals). */
+ *  vertex signals, one array per coordinate for the duals); x-bar in single or double
+ *  precision (Bar). */
+template <typename Bar>
 struct DualPass
 {
   const std::uint64_t *row_ptr;
   const VertexIndex *col;
   const float *root_weight;
-  const float *xbar;
+  const Bar *xbar;
   float *y[3];
   double *gty;
   float step, gamma;
@@ -121,8 +124,9 @@ struct DualPass
  *  in entry order. With p.x, returns the sum of the entries' norms of sqrt(w) (x_i - x_j)
  *  over [begin, end) as totalVariation sums a block (2 TV(x) over the blocks); else 0. A
  *  kernel (wide_kernels.h): each iteration runs it through detail::wide. */
+template <typename Bar>
 PCL_GRAPH_DENOISE_KERNEL inline double
-dualPass (const DualPass &p, std::size_t begin, std::size_t end)
+dualPass (const DualPass<Bar> &p, std::size_t begin, std::size_t end)
 {
   float d[3][kDualBatch];
   double dx[3][kDualBatch];
@@ -275,11 +279,15 @@ struct TotalVariationSystem::Impl
   /** The smallest positive tau: the data term's modulus of strong convexity in the
    *  preconditioned metric, for the acceleration. */
   double min_tau = 0.0;
-  /** The working arrays, kept from one solve to the next (each solve sets them all before
-   *  it reads them): the duals, grad^T y, and x-bar (see solve). */
+  /** The sum of sqrt(w) over the entries, for the mean length of the entries' differences. */
+  double root_weight_sum = 0.0;
+  /** The working arrays, kept from one solve to the next (each solve sets those it uses
+   *  before it reads them): the duals, grad^T y, and x-bar in single or double precision
+   *  (see solve). */
   mutable Duals y;
   mutable Signal3 gty;
-  mutable FloatSignal xbar;
+  mutable FloatSignal xbar_single;
+  mutable Signal3 xbar_double;
 
   bool
   identity () const { return root_weight.empty (); }
@@ -310,8 +318,10 @@ TotalVariationSystem::TotalVariationSystem (const PointGraph &graph, double gamm
   const int threads = params.num_threads;
   std::vector<double> tau = detail::rootDegree (graph, threads);
   double min_tau = std::numeric_limits<double>::infinity ();
+  double root_weight_sum = 0.0;
   for (double &t : tau)
   {
+    root_weight_sum += t;
     t = t > 0.0 ? 1.0 / t : 0.0;
     if (t > 0.0)
       min_tau = std::min (min_tau, t);
@@ -319,6 +329,7 @@ TotalVariationSystem::TotalVariationSystem (const PointGraph &graph, double gamm
   if (!std::isfinite (min_tau))  // no vertex with a weighted edge: the identity
     return;
   Impl &s = *impl_;
+  s.root_weight_sum = root_weight_sum;
   s.tau = std::move (tau);
   s.min_tau = min_tau;
   s.component_root = detail::residualComponents (graph, threads);
@@ -391,14 +402,12 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
   const auto originOf = [&] (std::size_t i) {
     return f.data () + 3 * std::size_t (roots ? roots[i] : 0);
   };
-  if (xbar.rows () == 0)  // the first solve; all three, or none should one fail
+  if (gty.rows () == 0)  // the first solve; both, or neither should one fail
   {
     Duals new_y = detail::matrixOnHugePages<Duals> (static_cast<Eigen::Index> (graph.numEntries ()));
     Signal3 new_gty = detail::matrixOnHugePages<Signal3> (rows);
-    FloatSignal new_xbar = detail::matrixOnHugePages<FloatSignal> (rows);
     y.swap (new_y);
     gty.swap (new_gty);
-    xbar.swap (new_xbar);
   }
   // f's total variation comes with the warm start (the cold start's objective), summed
   // over the same entries.
@@ -431,10 +440,7 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
                           : std::abs (d[0]) + std::abs (d[1]) + std::abs (d[2]));
       }
       for (int c = 0; c < 3; ++c)
-      {
         x (i, c) = f (i, c) - acc[c];
-        xbar (i, c) = static_cast<float> (x (i, c) - originOf (i)[c]);
-      }
     }
     return variation;
   };
@@ -459,10 +465,46 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
   {
     y.setZero ();
     x = f;
-    for (std::size_t i = 0; i < n; ++i)
-      for (int c = 0; c < 3; ++c)
-        xbar (i, c) = static_cast<float> (f (i, c) - originOf (i)[c]);
   }
+  // Single precision unless the tolerance asks for more than its rounding of the
+  // differences allows: 2^-24 R / L relative, R the farthest coordinate from its origin, L
+  // the entries' mean length (weighted by sqrt(w)). On a noisy sphere of 20,000 points
+  // (R / L about 100) the gap then stalls near 0.5 of that, 3e-6, where double reaches 1e-8;
+  // a tolerance of at least kSinglePrecisionMargin times it is met as fast in either.
+  constexpr double kSinglePrecisionMargin = 10.0;
+  struct Farthest
+  {
+    double value = 0.0;
+    Farthest &
+    operator+= (const Farthest &o)
+    {
+      value = std::max (value, o.value);
+      return *this;
+    }
+  };
+  const double reach =
+      detail::parallelSum<Farthest> (n, threads, [&] (std::size_t begin, std::size_t end) {
+        Farthest r;
+        for (std::size_t i = begin; i < end; ++i)
+          for (int c = 0; c < 3; ++c)
+            r.value = std::max (r.value, std::abs (f (i, c) - originOf (i)[c]));
+        return r;
+      }).value;
+  const double mean_length = 2.0 * f_variation / root_weight_sum;
+  const bool single = mean_length > 0.0 &&
+                      params.tolerance >= kSinglePrecisionMargin * 0x1p-24 * reach / mean_length;
+  if (single && xbar_single.rows () == 0)
+    xbar_single = detail::matrixOnHugePages<FloatSignal> (rows);
+  if (!single && xbar_double.rows () == 0)
+    xbar_double = detail::matrixOnHugePages<Signal3> (rows);
+  detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      for (int c = 0; c < 3; ++c)
+        if (single)
+          xbar_single (i, c) = static_cast<float> (x (i, c) - originOf (i)[c]);
+        else
+          xbar_double (i, c) = x (i, c) - originOf (i)[c];
+  });
   const double start_objective = std::min (warm_objective, cold_objective);
   const double f_norm2 = f.squaredNorm ();
 
@@ -525,22 +567,31 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
   {
     // Dual ascent with projection, then the adjoint of each row (dualPass); after a
     // check, with TV(x) of its iterate, which x still holds.
-    const DualPass pass{graph.row_ptr.data (),
-                        graph.col.data (),
-                        root_weight.data (),
-                        xbar.data (),
-                        {y.col (0).data (), y.col (1).data (), y.col (2).data ()},
-                        gty.data (),
-                        static_cast<float> (0.5 / scale),
-                        bound_gamma,
-                        params.norm,
-                        pending ? x.data () : nullptr,
-                        graph.weight.data ()};
-    const auto dual = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
-      return dualPass (pass, begin, end);
+    const auto passOver = [&] (const auto *bar) {
+      using Bar = std::remove_const_t<std::remove_pointer_t<decltype (bar)>>;
+      return DualPass<Bar>{graph.row_ptr.data (),
+                           graph.col.data (),
+                           root_weight.data (),
+                           bar,
+                           {y.col (0).data (), y.col (1).data (), y.col (2).data ()},
+                           gty.data (),
+                           static_cast<float> (0.5 / scale),
+                           bound_gamma,
+                           params.norm,
+                           pending ? x.data () : nullptr,
+                           graph.weight.data ()};
+    };
+    const DualPass<float> pass_single = passOver (static_cast<const float *> (xbar_single.data ()));
+    const DualPass<double> pass_double = passOver (static_cast<const double *> (xbar_double.data ()));
+    const auto dual_single = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
+      return dualPass (pass_single, begin, end);
+    };
+    const auto dual_double = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
+      return dualPass (pass_double, begin, end);
     };
     const double variation = 0.5 * detail::parallelSum<double> (n, threads, [&] (std::size_t begin, std::size_t end) {
-                                return detail::wide (dual, begin, end);
+                                return single ? detail::wide (dual_single, begin, end)
+                                              : detail::wide (dual_double, begin, end);
                               });
     if (pending)
     {
@@ -553,9 +604,11 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
     }
     // Primal step: prox of 1/2 |x - f|^2, then the accelerated extrapolation.
     const double theta = 1.0 / std::sqrt (1.0 + 2.0 * scale * min_tau);
-    const auto primal_step = [&, scale] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
+    // (Into x-bar of either precision: Bar.)
+    const auto primal_step = [&, scale] (auto *__restrict xbars, std::size_t begin,
+                                         std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
+      using Bar = std::decay_t<decltype (*xbars)>;
       double *__restrict xs = x.data ();
-      float *__restrict xbars = xbar.data ();
       const double *__restrict fs = f.data ();
       const double *__restrict gtys = gty.data ();
       const double *__restrict taus = tau.data ();
@@ -568,12 +621,21 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
           const double previous = xs[c];
           const double next = (previous - step_i * gtys[c] + step_i * fs[c]) / (1.0 + step_i);
           xs[c] = next;
-          xbars[c] = static_cast<float> (next + theta * (next - previous) - o[c - 3 * i]);
+          xbars[c] = static_cast<Bar> (next + theta * (next - previous) - o[c - 3 * i]);
         }
       }
     };
+    const auto primal_single = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
+      primal_step (xbar_single.data (), begin, end);
+    };
+    const auto primal_double = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
+      primal_step (xbar_double.data (), begin, end);
+    };
     detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
-      detail::wide (primal_step, begin, end);
+      if (single)
+        detail::wide (primal_single, begin, end);
+      else
+        detail::wide (primal_double, begin, end);
     });
     scale *= theta;
     ++it;

@@ -133,7 +133,10 @@ struct TotalVariationParams
    *  after 5 and 10 iterations, then at most 10 apart, when its rate of fall since the
    *  last check would bring it to the tolerance: the stop comes within about an iteration
    *  of meeting it). With the solver's warm start, 1e-3 lands within about 1% of
-   *  the exact minimiser's distance to the surface on noisy spheres. */
+   *  the exact minimiser's distance to the surface on noisy spheres. The dual step's
+   *  differences are taken in single precision unless the tolerance is below ten times
+   *  their rounding (2^-24 times the cloud's extent over its mean edge length); the duals
+   *  are single precision, which puts the floor near 1e-8. */
   double tolerance = 1e-3;
   int max_iterations = 500;  ///< iteration cap; valid >= 1
   int num_threads = 0;       ///< 0 = all hardware threads; valid >= 0
