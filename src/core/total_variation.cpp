@@ -469,8 +469,9 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
   // Single precision unless the tolerance asks for more than its rounding of the
   // differences allows: 2^-24 R / L relative, R the farthest coordinate from its origin, L
   // the entries' mean length (weighted by sqrt(w)). On a noisy sphere of 20,000 points
-  // (R / L about 100) the gap then stalls near 0.5 of that, 3e-6, where double reaches 1e-8;
-  // a tolerance of at least kSinglePrecisionMargin times it is met as fast in either.
+  // (R / L about 54: 3.2e-6) the gap stalls near that rounding, 3e-6, where double reaches
+  // 1e-8; a tolerance of at least kSinglePrecisionMargin times it is met as fast in either
+  // (on the 1M sphere the rounding is 1.3e-5, against the filters' 2e-2).
   constexpr double kSinglePrecisionMargin = 10.0;
   struct Farthest
   {
