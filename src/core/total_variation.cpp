@@ -498,13 +498,17 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
     xbar_single = detail::matrixOnHugePages<FloatSignal> (rows);
   if (!single && xbar_double.rows () == 0)
     xbar_double = detail::matrixOnHugePages<Signal3> (rows);
-  detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i)
-      for (int c = 0; c < 3; ++c)
-        if (single)
-          xbar_single (i, c) = static_cast<float> (x (i, c) - originOf (i)[c]);
-        else
-          xbar_double (i, c) = x (i, c) - originOf (i)[c];
+  // Runs `body` on the solve's x-bar (a float or a double pointer, row-major n x 3).
+  const auto withXbar = [&] (const auto &body) {
+    return single ? body (xbar_single.data ()) : body (xbar_double.data ());
+  };
+  withXbar ([&] (auto *bar) {
+    using Bar = std::decay_t<decltype (*bar)>;
+    detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i)
+        for (int c = 0; c < 3; ++c)
+          bar[3 * i + c] = static_cast<Bar> (x (i, c) - originOf (i)[c]);
+    });
   });
   const double start_objective = std::min (warm_objective, cold_objective);
   const double f_norm2 = f.squaredNorm ();
@@ -568,32 +572,26 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
   {
     // Dual ascent with projection, then the adjoint of each row (dualPass); after a
     // check, with TV(x) of its iterate, which x still holds.
-    const auto passOver = [&] (const auto *bar) {
-      using Bar = std::remove_const_t<std::remove_pointer_t<decltype (bar)>>;
-      return DualPass<Bar>{graph.row_ptr.data (),
-                           graph.col.data (),
-                           root_weight.data (),
-                           bar,
-                           {y.col (0).data (), y.col (1).data (), y.col (2).data ()},
-                           gty.data (),
-                           static_cast<float> (0.5 / scale),
-                           bound_gamma,
-                           params.norm,
-                           pending ? x.data () : nullptr,
-                           graph.weight.data ()};
-    };
-    const DualPass<float> pass_single = passOver (static_cast<const float *> (xbar_single.data ()));
-    const DualPass<double> pass_double = passOver (static_cast<const double *> (xbar_double.data ()));
-    const auto dual_single = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
-      return dualPass (pass_single, begin, end);
-    };
-    const auto dual_double = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
-      return dualPass (pass_double, begin, end);
-    };
-    const double variation = 0.5 * detail::parallelSum<double> (n, threads, [&] (std::size_t begin, std::size_t end) {
-                                return single ? detail::wide (dual_single, begin, end)
-                                              : detail::wide (dual_double, begin, end);
-                              });
+    const double variation = withXbar ([&] (const auto *bar) {
+      const DualPass<std::decay_t<decltype (*bar)>> pass{
+          graph.row_ptr.data (),
+          graph.col.data (),
+          root_weight.data (),
+          bar,
+          {y.col (0).data (), y.col (1).data (), y.col (2).data ()},
+          gty.data (),
+          static_cast<float> (0.5 / scale),
+          bound_gamma,
+          params.norm,
+          pending ? x.data () : nullptr,
+          graph.weight.data ()};
+      const auto dual = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
+        return dualPass (pass, begin, end);
+      };
+      return 0.5 * detail::parallelSum<double> (n, threads, [&] (std::size_t begin, std::size_t end) {
+               return detail::wide (dual, begin, end);
+             });
+    });
     if (pending)
     {
       pending = false;
@@ -626,17 +624,13 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
         }
       }
     };
-    const auto primal_single = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
-      primal_step (xbar_single.data (), begin, end);
-    };
-    const auto primal_double = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
-      primal_step (xbar_double.data (), begin, end);
-    };
-    detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
-      if (single)
-        detail::wide (primal_single, begin, end);
-      else
-        detail::wide (primal_double, begin, end);
+    withXbar ([&] (auto *bar) {
+      const auto primal = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
+        primal_step (bar, begin, end);
+      };
+      detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
+        detail::wide (primal, begin, end);
+      });
     });
     scale *= theta;
     ++it;
