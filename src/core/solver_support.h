@@ -183,15 +183,6 @@ requireSolverSignal (const PointGraph &graph, const Signal3 &f)
     throw std::invalid_argument ("the signal must be finite");
 }
 
-/** Checks shared by the solvers; throws std::invalid_argument. */
-inline void
-requireSolverInput (const PointGraph &graph, const Signal3 &f, double gamma, int num_threads,
-                    double tolerance, int max_iterations)
-{
-  requireSolverSettings (gamma, num_threads, tolerance, max_iterations);
-  requireSolverSignal (graph, f);
-}
-
 /** Throws std::runtime_error when a solver's result is not finite, or lies farther
  *  outside the bounding box of its input f than that box's largest side in some
  *  coordinate: a gamma so large that the computation overflowed or lost its precision
