@@ -558,16 +558,42 @@ TEST (BadInput, ZeroParametersAreTheirDocumentedMeaning)
   });
   EXPECT_EQ (defaults.kept, zeros.kept);
   EXPECT_LT (defaults.kept.size (), cloud->size ());
-  // A zero threshold, fraction or ratio removes no finite point.
-  for (const OutlierSetup &setup : std::vector<OutlierSetup>{
-           [] (Outliers &f) { f.setDegreeThreshold (0.0); },
-           [] (Outliers &f) { f.setOutlierFraction (0.0); },
-           [] (Outliers &f) { f.setAutomaticThresholdRatio (0.0); }})
+  // A zero threshold or ratio removes no point by its degree: with the residual test off
+  // too, no finite point goes; with it on (the default), what the residual test removes
+  // on its own, the same for both. A zero fraction removes none (no residual test there).
+  // On a plane: two points 20 noise levels above it, linked to it and off its plane.
+  auto plane = std::make_shared<Cloud> (synthetic::noisyPlane (400, 0.005, 3));
+  for (const std::size_t i : {std::size_t (0), std::size_t (1)})
   {
-    const Outcome o = run (Kind::OUTLIERS, cloud, setup);
-    expectSplit (o, *cloud);
-    EXPECT_EQ (o.kept.size (), cloud->size ()) << o.what ();
+    pcl::PointXYZ above = (*plane)[i];
+    above.z += 0.1f;
+    plane->push_back (above);
   }
+  const Outcome residual_only = run (Kind::OUTLIERS, plane, [] (Outliers &f) {
+    f.setDegreeThreshold (0.0);
+  });
+  expectSplit (residual_only, *plane);
+  EXPECT_EQ (residual_only.kept.size (), plane->size () - 2);  // the two above it
+  const Outcome ratio_zero = run (Kind::OUTLIERS, plane, [] (Outliers &f) {
+    f.setAutomaticThresholdRatio (0.0);
+  });
+  EXPECT_EQ (ratio_zero.kept, residual_only.kept);
+  for (const OutlierSetup &setup : std::vector<OutlierSetup>{
+           [] (Outliers &f) {
+             f.setDegreeThreshold (0.0);
+             f.setResidualThreshold (0.0);
+           },
+           [] (Outliers &f) { f.setOutlierFraction (0.0); },
+           [] (Outliers &f) {
+             f.setAutomaticThresholdRatio (0.0);
+             f.setResidualThreshold (0.0);
+           }})
+    for (const Cloud::Ptr &c : {cloud, plane})
+    {
+      const Outcome o = run (Kind::OUTLIERS, c, setup);
+      expectSplit (o, *c);
+      EXPECT_EQ (o.kept.size (), c->size ()) << o.what ();
+    }
   for (const Kind kind : kSmoothers)
   {
     // Sigma 0 = derived, threads 0 = all: the default result.

@@ -227,6 +227,13 @@ TEST (Tikhonov, IterationCapIsReported)
   EXPECT_EQ (report.iterations, 2);
   EXPECT_GT (report.residual, 1e-14);
   EXPECT_TRUE (x.allFinite ());
+  // No iteration allowed: the start, f, with its residual.
+  params.max_iterations = 0;
+  SolverReport none;
+  EXPECT_TRUE (solveTikhonov (p.graph, p.f, 50.0, params, &none) == p.f);
+  EXPECT_FALSE (none.converged);
+  EXPECT_EQ (none.iterations, 0);
+  EXPECT_GT (none.residual, report.residual);
 }
 
 TEST (Tikhonov, AFarPointDoesNotLoosenTheStoppingTest)

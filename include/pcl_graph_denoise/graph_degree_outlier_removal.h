@@ -79,7 +79,7 @@ public:
    *  over the points of their mean distance to their 10 nearest neighbours (over the
    *  distinct positions when there are exact copies: they do not make the surface
    *  denser).
-   *  Valid: >= 0. */
+   *  Valid: finite, >= 0. */
   inline void
   setRadiusSearch (double epsilon) { radius_ = epsilon; }
 
@@ -89,7 +89,7 @@ public:
 
   /** \brief Kernel width theta of the weights exp(-d^2 / (2 theta^2)), in the cloud's
    *  units. Default 0 = derived from the data: theta = the spacing (see setRadiusSearch).
-   *  Valid: >= 0. */
+   *  Valid: finite, >= 0. */
   inline void
   setSigma (double theta) { sigma_ = theta; }
 
@@ -98,7 +98,7 @@ public:
   getSigma () const { return sigma_; }
 
   /** \brief Removes the points whose weighted degree is below tau (unitless: a sum of
-   *  weights in [0, 1]). Selects ABSOLUTE_THRESHOLD. Valid: >= 0. */
+   *  weights in [0, 1]). Selects ABSOLUTE_THRESHOLD. Valid: finite, >= 0. */
   inline void
   setDegreeThreshold (double tau)
   {
@@ -130,7 +130,7 @@ public:
    *  of the finite points (a quartile, so that up to a quarter of outliers do not pull it
    *  down; when more than a quarter have no neighbour at all, the quartile of the others,
    *  with a PCL_WARN). Selects AUTOMATIC_THRESHOLD (the default rule). Default ratio 0.2.
-   *  Valid: >= 0. */
+   *  Valid: finite, >= 0. */
   inline void
   setAutomaticThresholdRatio (double ratio)
   {
@@ -239,8 +239,8 @@ protected:
   applyFilter (PointCloud &output) override;
 
 private:
-  /** Default epsilon and theta as multiples of the spacing, and the default ratio: chosen
-   *  on noisy spheres and cubes with 5% and 20% uniform outliers (100k and 1M points,
+  /** Default epsilon and theta as multiples of the spacing (and automatic_ratio_'s 0.2,
+   *  below): chosen on noisy spheres and cubes with 5% and 20% uniform outliers (100k and 1M points,
    *  noise 0.2% and 0.5% of the radius) for the best mean F1 score, while removing about
    *  1% of a real stereo scan (bench/bench_graph.cpp prints the figures). */
   static constexpr double kRadiusFactor = 3.0;

@@ -114,7 +114,7 @@ public:
 
   /** \brief Kernel width theta of the weights exp(-d^2 / (2 theta^2)), in the cloud's
    *  units. Default 0 = derived from the data: mean k-NN distance / sqrt(2).
-   *  Valid: >= 0. */
+   *  Valid: finite, >= 0. */
   inline void
   setSigma (double theta) { sigma_ = theta; }
 
@@ -127,7 +127,7 @@ public:
    *  solve's strength; the local-surface step after it (setNormalDisplacement,
    *  setLocalSurface) smooths on its own, so that a gamma near 0 still moves the points
    *  onto the surfaces fitted to them (in the paper's filter, without that step, gamma ->
-   *  0 is the identity). Valid: >= 0. A gamma
+   *  0 is the identity). Valid: finite, >= 0. A gamma
    *  too large for double precision (for Tikhonov on a unit sphere, about 1e20), whose
    *  solve would return points outside the cloud's bounding box, is an error (empty
    *  output) rather than such a cloud. */
@@ -256,7 +256,7 @@ public:
   getShrinkageCorrection () const { return shrinkage_correction_; }
 
   /** \brief When the solver stops: the conjugate gradient's relative residual
-   *  (Tikhonov) or the relative primal-dual gap (TV). Valid: > 0. Until one is set, the
+   *  (Tikhonov) or the relative primal-dual gap (TV). Valid: finite, > 0. Until one is set, the
    *  default depends on the pipeline: where the points move onto fitted quadrics (the
    *  default local surface, setLocalSurface) the fit removes what a looser solve leaves,
    *  and the default is the subclass's looser one (Tikhonov 5e-4, TV 2e-2: on the

@@ -22,7 +22,8 @@
 namespace pcl_graph_denoise {
 namespace core {
 
-/** \brief Vertex index type of the graph (32 bits: at most 2^32 - 1 points). */
+/** \brief Vertex index type of the graph (32 bits: at most 2^32 - 2 points; the largest
+ *  value marks "no vertex"). */
 using VertexIndex = std::uint32_t;
 
 /** \brief Positions of N points, one per row, in the caller's units. */
@@ -132,7 +133,7 @@ struct RadiusGraphParams
 
 /** \brief Build the symmetrised k-NN graph of the finite points in `points`.
  *  \throws std::invalid_argument on invalid parameters, non-finite points, more
- *  than 2^32 - 1 points, points spanning more than 1e18 units along an axis (the
+ *  than 2^32 - 2 points, points spanning more than 1e18 units along an axis (the
  *  neighbour search's single-precision squared distances would overflow), or a graph
  *  whose estimated peak memory (core::knnGraphMemory) exceeds params.memory_limit
  *  (k is capped at N - 1, so a huge k asks for the complete graph). An empty point set gives an empty graph. */
@@ -170,7 +171,7 @@ struct SpatioTemporalGraphParams
  *  frames; frames may differ in size or be empty. With one frame, or k2 = 0 and an
  *  explicit theta, the result is the static k-NN graph of each frame.
  *  \throws std::invalid_argument on invalid parameters, non-finite points, or more than
- *  2^32 - 1 points in all, or a graph above the memory limit (as buildKnnGraph). */
+ *  2^32 - 2 points in all, or a graph above the memory limit (as buildKnnGraph). */
 PointGraph
 buildSpatioTemporalGraph (const std::vector<PointMatrix> &frames,
                           const SpatioTemporalGraphParams &params = {});

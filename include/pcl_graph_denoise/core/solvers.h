@@ -64,7 +64,7 @@ struct TikhonovParams
    *  I + 2 gamma L >= I, the solution's error is at most the residual: 1e-5 of the
    *  cloud's extent, far below any noise worth removing. */
   double tolerance = 1e-5;
-  int max_iterations = 1000;  ///< CG iteration cap; valid >= 1
+  int max_iterations = 1000;  ///< CG iteration cap; valid >= 0 (0 returns f unsolved)
   int num_threads = 0;        ///< 0 = all hardware threads; valid >= 0
   /** Called every 10 CG iterations with the iterations done and the relative residual
    *  then, from the calling thread; empty (default) = silent. For progress reports. */
@@ -138,7 +138,10 @@ struct TotalVariationParams
    *  their rounding (2^-24 times the cloud's extent over its mean edge length); the duals
    *  are single precision, which puts the floor near 1e-8. */
   double tolerance = 1e-3;
-  int max_iterations = 500;  ///< iteration cap; valid >= 1
+  /** Iteration cap; valid >= 0. 0 returns the start: f - grad^T y with every dual at
+   *  gamma along its edge's difference of f (or f itself where that start's objective is
+   *  over 100 times f's). */
+  int max_iterations = 500;
   int num_threads = 0;       ///< 0 = all hardware threads; valid >= 0
   /** Called at every duality-gap check (see tolerance; and at the cap) with the
    *  iterations done and the relative gap then, from the calling thread; empty (default)
