@@ -605,6 +605,25 @@ TEST (BadInput, ZeroParametersAreTheirDocumentedMeaning)
   }
 }
 
+TEST (BadInput, ASigmaTooSmallForTheCloudWarns)
+{
+  // A sphere in millimetres given theta in metres: every weight underflows, no point is
+  // linked, nothing moves, and the smoothers say why (it was a debug message).
+  auto mm = std::make_shared<Cloud> (synthetic::noisySphere (2000, 1000.0, 5.0, 4));
+  for (const Kind kind : kSmoothers)
+  {
+    const Outcome o = run (kind, mm, nullptr, [] (Smoothing &f) { f.setSigma (0.02); });
+    EXPECT_NE (o.err.find ("2000 of 2000 points have no neighbour with a weight above 0 at "
+                           "theta = 0.02"),
+               std::string::npos)
+        << o.what ();
+    EXPECT_TRUE (sameCloud (o.output, *mm)) << o.what ();
+    // At the derived theta: no such warning.
+    const Outcome derived = run (kind, mm);
+    EXPECT_EQ (derived.err.find ("have no neighbour"), std::string::npos) << derived.what ();
+  }
+}
+
 TEST (BadInput, NonFiniteParametersAreNamed)
 {
   auto cloud = sphere (200);
@@ -700,10 +719,10 @@ TEST (BadInput, HugeSmoothingParametersGiveDefinedResultsOrAnError)
       EXPECT_GT (expectSmoothed (o, *cloud), 0u) << o.what ();
     }
     // Sigma below every distance: every weight 0, no edge, each point on its own and
-    // left where it is, without an error.
+    // left where it is, without an error but with a warning saying why.
     const Outcome apart = run (kind, cloud, nullptr, [] (Smoothing &f) { f.setSigma (1e-300); });
     EXPECT_EQ (expectSmoothed (apart, *cloud), 0u) << apart.what ();
-    EXPECT_TRUE (apart.err.empty ()) << apart.what ();
+    EXPECT_NE (apart.err.find ("theta (setSigma) is too small"), std::string::npos) << apart.what ();
     // INT_MAX passes would run for ever: an error (regression: it was accepted).
     expectError (run (kind, cloud, nullptr, [] (Smoothing &f) { f.setGraphIterations (INT_MAX); }),
                  "must be in [1, 1000]");
@@ -834,11 +853,20 @@ TEST (BadInput, IndicesOutOfRangeEmptyOrRepeated)
                    "out of range");
     // No index: nothing to filter.
     const Outcome none = run (kind, cloud, nullptr, nullptr, std::make_shared<pcl::Indices> ());
-    EXPECT_NE (none.err.find ("no finite point"), std::string::npos) << none.what ();
+    EXPECT_NE (none.err.find ("the index list (setIndices) is empty (100 points)"), std::string::npos)
+        << none.what ();
     if (kind == Kind::OUTLIERS)
       EXPECT_TRUE (none.kept.empty () && none.output.empty ());
     else
       EXPECT_TRUE (sameCloud (none.output, *cloud)) << none.what ();
+    // Indices of non-finite points only: said so, not that the cloud has none.
+    auto holes = std::make_shared<Cloud> (*cloud);
+    (*holes)[5].x = (*holes)[7].y = kNaN;
+    const Outcome nan_only =
+        run (kind, holes, nullptr, nullptr, std::make_shared<pcl::Indices> (pcl::Indices{5, 7}));
+    EXPECT_NE (nan_only.err.find ("the 2 indices (setIndices) name no finite point of the 100"),
+               std::string::npos)
+        << nan_only.what ();
     // Repeated indices: used once each, with a warning; the result of the list without
     // the repeats.
     pcl::Indices unique, repeated;

@@ -805,7 +805,9 @@ TEST (RadiusGraph, AutomaticDegreeThresholdIsARatioOfTheFirstQuartile)
   EXPECT_EQ (automaticDegreeThreshold (isolated, 0.5).without_neighbour, 3u);
   EXPECT_DOUBLE_EQ (automaticDegreeThreshold (isolated, 0.0).threshold, 0.0);
   EXPECT_DOUBLE_EQ (automaticDegreeThreshold ({}, 0.5).threshold, 0.0);
+  // None with a neighbour: nothing to derive the threshold from, and all of them counted.
   EXPECT_DOUBLE_EQ (automaticDegreeThreshold ({0, 0}, 0.5).threshold, 0.0);
+  EXPECT_EQ (automaticDegreeThreshold ({0, 0, 0}, 0.5).without_neighbour, 3u);
   EXPECT_THROW (automaticDegreeThreshold (degrees, -1.0), std::invalid_argument);
   EXPECT_THROW (automaticDegreeThreshold (degrees, std::nan ("")), std::invalid_argument);
   RadiusGraphParams bad;

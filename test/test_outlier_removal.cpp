@@ -626,6 +626,32 @@ TEST (OutlierRemovalBadInput, AllNaNCloud)
   EXPECT_TRUE (sameCloud (*cloud, before));
 }
 
+TEST (OutlierRemovalBadInput, ARadiusOrSigmaTooSmallForTheCloudWarns)
+{
+  // A sphere in millimetres given parameters in metres: no point has a neighbour within
+  // 0.05, or every weight underflows at theta 0.02. No threshold can be derived; the
+  // filter says so instead of returning the cloud without a word.
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> (
+      pcl_graph_denoise::synthetic::noisySphere (3000, 1000.0, 5.0, 4));
+  for (const bool radius : {true, false})
+  {
+    GraphDegreeOutlierRemoval<pcl::PointXYZ> filter;
+    if (radius)
+      filter.setRadiusSearch (0.05);
+    else
+      filter.setSigma (0.02);
+    pcl::Indices kept;
+    const std::string err = runCapturing (filter, cloud, kept);
+    EXPECT_NE (err.find ("None of the 3000 points has a neighbour"), std::string::npos) << err;
+    EXPECT_NE (err.find (radius ? "epsilon = 0.05" : "theta = 0.02"), std::string::npos) << err;
+    EXPECT_EQ (filter.getUsedDegreeThreshold (), 0.0);
+  }
+  // At the derived values: no such warning.
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter;
+  pcl::Indices kept;
+  EXPECT_EQ (runCapturing (filter, cloud, kept).find ("None of the"), std::string::npos);
+}
+
 TEST (OutlierRemovalBadInput, OnePointAndTwoPoints)
 {
   auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
@@ -713,6 +739,41 @@ TEST (OutlierRemovalBadInput, FewerDistinctPositionsThanNeighboursEndTheSparseSu
   EXPECT_GT (filter.getUsedDegreeThreshold (), 1.0);  // the far pair is a candidate
   EXPECT_EQ (kept.size (), 30u);
   EXPECT_EQ (*filter.getRemovedIndices (), (pcl::Indices{30, 31}));
+}
+
+TEST (OutlierRemovalBadInput, ACopiedCloudKeepsTheResidualTestsDecisions)
+{
+  // A noisy plane and a point two spacings above it: linked to the plane, so only the
+  // residual test removes it. The whole cloud twice or three times over: the point's
+  // copies lay beside it and passed for a layer of surface points with it (its plane
+  // counted them), so every copy was kept; the plane leaves out its own copies.
+  auto plane = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+  std::mt19937 rng (5);
+  std::normal_distribution<float> noise (0.0f, 0.001f);
+  for (int i = 0; i < 100; ++i)
+    for (int j = 0; j < 100; ++j)
+      plane->push_back (pcl::PointXYZ (0.01f * i, 0.01f * j, noise (rng)));
+  plane->push_back (pcl::PointXYZ (0.505f, 0.505f, 0.02f));
+  const int above = static_cast<int> (plane->size ()) - 1;
+  GraphDegreeOutlierRemoval<pcl::PointXYZ> filter (true);
+  pcl::Indices kept;
+  filter.setInputCloud (plane);
+  filter.filter (kept);
+  const std::size_t kept_once = kept.size ();
+  ASSERT_EQ (*filter.getRemovedIndices (), pcl::Indices{above});
+  for (const int times : {2, 3})
+  {
+    auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> ();
+    for (int t = 0; t < times; ++t)
+      *cloud += *plane;
+    filter.setInputCloud (cloud);
+    filter.filter (kept);
+    pcl::Indices expected;
+    for (int t = 0; t < times; ++t)
+      expected.push_back (above + t * static_cast<int> (plane->size ()));
+    EXPECT_EQ (*filter.getRemovedIndices (), expected) << times << " times";
+    EXPECT_EQ (kept.size (), times * kept_once) << times << " times";
+  }
 }
 
 TEST (OutlierRemovalBadInput, AStackOfCopiesChangesNothingElse)

@@ -45,6 +45,7 @@ class GraphDegreeOutlierRemoval : public pcl::FilterIndices<PointT>
 protected:
   using PointCloud = typename pcl::FilterIndices<PointT>::PointCloud;  ///< the cloud type filtered
   using pcl::FilterIndices<PointT>::extract_removed_indices_;
+  using pcl::FilterIndices<PointT>::fake_indices_;
   using pcl::FilterIndices<PointT>::filter_name_;
   using pcl::FilterIndices<PointT>::getClassName;
   using pcl::FilterIndices<PointT>::indices_;

@@ -61,6 +61,20 @@ checkIndices (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &indices)
   return {};
 }
 
+/** \brief Why a filter call has nothing to work on (no finite point gathered): an empty
+ *  index list, indices that name only non-finite points, or a cloud without a finite
+ *  point (`user_indices`: the caller set the index list, PCLBase's !fake_indices_). */
+inline std::string
+noFinitePointReason (std::size_t cloud_size, std::size_t num_indices, bool user_indices)
+{
+  if (user_indices && num_indices == 0)
+    return "the index list (setIndices) is empty (" + std::to_string (cloud_size) + " points)";
+  if (user_indices)
+    return "the " + std::to_string (num_indices) + " indices (setIndices) name no finite point of the " +
+           std::to_string (cloud_size);
+  return "the input has no finite point (" + std::to_string (cloud_size) + " points)";
+}
+
 /** \brief True when x, y and z of a point are all finite. */
 template <typename PointT>
 inline bool

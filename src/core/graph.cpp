@@ -1218,6 +1218,23 @@ radiusGraphDegrees (const PointMatrix &points, const RadiusGraphParams &params)
               std::accumulate (gaussian.begin (), gaussian.end (), 0.0);
           if (!residuals)
             continue;
+          // The plane leaves the point out, and so its exact copies: at its position they
+          // would pass for surface points beside it in the layer rule (PlaneFit::support),
+          // and an outlier copied twice would be kept. (Its degree counts them, as
+          // RadiusOutlierRemoval counts them.)
+          if (!search.position_of.empty ())
+          {
+            const VertexIndex own = search.position_of[i];
+            std::size_t kept = 0;
+            for (std::size_t m = 0; m < neighbors.size (); ++m)
+              if (search.position_of[neighbors[m]] != own)
+              {
+                neighbors[kept] = neighbors[m];
+                squared[kept++] = squared[m];
+              }
+            neighbors.resize (kept);
+            squared.resize (kept);
+          }
           if (neighbors.size () > kMaxPlaneNeighbours)
           {
             // The nearest, by (distance, index): a choice that depends on nothing else.
@@ -1271,11 +1288,11 @@ automaticDegreeThreshold (const std::vector<double> &degree, double ratio)
   if (quartile == 0.0 && ratio > 0.0)
   {
     sorted.erase (std::remove (sorted.begin (), sorted.end (), 0.0), sorted.end ());
+    out.without_neighbour = degree.size () - sorted.size ();
     if (!sorted.empty ())
     {
       std::nth_element (sorted.begin (), sorted.begin () + sorted.size () / 4, sorted.end ());
       quartile = sorted[sorted.size () / 4];
-      out.without_neighbour = degree.size () - sorted.size ();
     }
   }
   out.threshold = ratio * quartile;

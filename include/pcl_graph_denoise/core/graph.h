@@ -245,7 +245,9 @@ struct RadiusDegrees
 struct DegreeThreshold
 {
   double threshold = 0.0;  ///< the threshold: ratio x the quartile
-  /** The degrees that were 0 when they were more than a quarter (0 otherwise). */
+  /** The degrees that were 0 when they were more than a quarter (0 otherwise). When
+   *  every degree is 0 (with a ratio > 0), all of them, and the threshold is 0: there is
+   *  nothing to derive it from. */
   std::size_t without_neighbour = 0;
 };
 

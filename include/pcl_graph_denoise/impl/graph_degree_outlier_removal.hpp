@@ -111,13 +111,13 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
   // Degree of every gathered row.
   const std::size_t count = gathered.cloud_index.size ();
   if (count == 0)
-    PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] The input has no finite point to "
-               "filter (%zu points, %zu indices).\n",
-               name.c_str (), input_->size (), indices_->size ());
+    PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] Nothing to filter: %s.\n", name.c_str (),
+               noFinitePointReason (input_->size (), indices_->size (), !fake_indices_).c_str ());
   std::vector<double> degree;
   std::vector<float> isolation;  // mean distance to the nearest neighbours, for ties
   std::vector<std::uint8_t> off_surface;  // the residual test's verdict (empty without it)
   std::vector<std::uint8_t> sparse_surface;  // low degree on a sparse surface (empty without)
+  double spacing = 0.0;                      // the cloud's (RadiusDegrees::spacing)
   try
   {
     core::RadiusGraphParams params;
@@ -135,6 +135,7 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
     core::RadiusDegrees result = core::radiusGraphDegrees (gathered.xyz, params);
     used_radius_ = result.radius;
     used_sigma_ = result.sigma;
+    spacing = result.spacing;
     degree = std::move (result.degree);
     isolation = std::move (result.mean_knn_distance);
     off_surface = std::move (result.off_surface);
@@ -170,7 +171,17 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
     if (rule_ == AUTOMATIC_THRESHOLD)
     {
       const core::DegreeThreshold automatic = core::automaticDegreeThreshold (degree, automatic_ratio_);
-      if (automatic.without_neighbour > 0)
+      if (automatic.without_neighbour == count)
+      {
+        if (count > 1 && spacing > 0.0)  // else nothing to link: one position
+          PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] None of the %zu points has a "
+                    "neighbour within epsilon = %g with a weight above 0 (theta = %g): no "
+                    "degree threshold can be derived, and no point is removed for its "
+                    "degree. Epsilon (setRadiusSearch) or theta (setSigma) is too small for "
+                    "this cloud (the spacing of its points is %g).\n",
+                    name.c_str (), count, used_radius_, used_sigma_, spacing);
+      }
+      else if (automatic.without_neighbour > 0)
         PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] %zu of %zu points have no "
                   "neighbour within epsilon = %g: more than a quarter, so the automatic "
                   "threshold comes from the first quartile of the others' degrees.\n",

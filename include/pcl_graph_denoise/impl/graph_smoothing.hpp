@@ -137,9 +137,10 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
   GatheredPoints gathered = gatherFinitePoints (*input_, *indices_, name.c_str ());
   if (gathered.cloud_index.empty ())
   {
-    PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] The input has no finite point to "
-               "smooth (%zu points, %zu indices); it is returned unchanged.\n",
-               name.c_str (), input_->size (), indices_->size ());
+    PCL_ERROR ("[pcl_graph_denoise::%s::applyFilter] Nothing to smooth: %s; the input is "
+               "returned unchanged.\n",
+               name.c_str (),
+               noFinitePointReason (input_->size (), indices_->size (), !fake_indices_).c_str ());
     return;
   }
   if (!automatic_gamma_ && gamma_ == 0.0)
@@ -216,7 +217,15 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
     used_sigma_ = graph.sigma;
     used_gamma_ = gamma_;
     components_ = core::connectedComponents (graph, num_threads_);
-    if (components_.count > 1)
+    // Most points without a link of weight above 0 (a theta far below the spacing, e.g.
+    // given in metres for a cloud in millimetres): say so, they stay where they are.
+    if (2 * components_.isolated > count && count > 1 && graph.spacing > 0.0)
+      PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] %zu of %zu points have no neighbour "
+                "with a weight above 0 at theta = %g (their mean distance to their k "
+                "nearest neighbours is %g) and stay where they are: theta (setSigma) is too "
+                "small for this cloud.\n",
+                name.c_str (), components_.isolated, count, graph.sigma, graph.spacing);
+    else if (components_.count > 1)
       PCL_DEBUG ("[pcl_graph_denoise::%s::applyFilter] The graph of %zu points has %zu "
                  "connected components (largest %zu points, %zu isolated points that do "
                  "not move); each is smoothed on its own.\n",
