@@ -142,10 +142,11 @@ XyzFields::writeBack (pcl::PCLPointCloud2 &cloud, const pcl::PointCloud<pcl::Poi
 }
 
 void
-XyzFields::extendBounds (const pcl::PCLPointCloud2 &cloud, double low[3], double high[3]) const
+XyzFields::sampleCoordinates (const pcl::PCLPointCloud2 &cloud, std::size_t stride,
+                              std::vector<double> values[3]) const
 {
   const std::size_t n = std::size_t (cloud.width) * cloud.height;
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < n; i += stride)
   {
     const std::uint8_t *p = pointData (cloud, i);
     double v[3];
@@ -155,31 +156,24 @@ XyzFields::extendBounds (const pcl::PCLPointCloud2 &cloud, double low[3], double
       continue;
     for (int d = 0; d < 3; ++d)
       if (field_[d].datatype == pcl::PCLPointField::FLOAT64)
-      {
-        low[d] = std::min (low[d], v[d]);
-        high[d] = std::max (high[d], v[d]);
-      }
+        values[d].push_back (v[d]);
   }
 }
 
 namespace {
 
-/** Empty bounds, for extendBounds. */
-void
-emptyBounds (double low[3], double high[3])
-{
-  for (int d = 0; d < 3; ++d)
-  {
-    low[d] = std::numeric_limits<double>::infinity ();
-    high[d] = -std::numeric_limits<double>::infinity ();
-  }
-}
+/** At most about this many points are sampled (every s-th) for the origin's medians. */
+constexpr std::size_t kOriginSamples = 1000000;
 
-/** The centre of [low, high] on an axis, 0 where it is empty (no double coordinate). */
+/** The median of `values`, 0 when there are none (no double coordinate on that axis). */
 double
-centre (double low, double high)
+median (std::vector<double> &values)
 {
-  return low <= high ? 0.5 * low + 0.5 * high : 0.0;
+  if (values.empty ())
+    return 0.0;
+  const auto middle = values.begin () + std::ptrdiff_t (values.size () / 2);
+  std::nth_element (values.begin (), middle, values.end ());
+  return *middle;
 }
 
 }  // namespace
@@ -189,23 +183,28 @@ setCommonOrigin (std::vector<XyzFields> &fields, const std::vector<const pcl::PC
 {
   if (fields.size () != clouds.size ())
     throw std::invalid_argument ("setCommonOrigin: one cloud per set of fields");
-  double low[3], high[3];
-  emptyBounds (low, high);
+  std::size_t total = 0;
+  for (const pcl::PCLPointCloud2 *cloud : clouds)
+    total += std::size_t (cloud->width) * cloud->height;
+  const std::size_t stride = std::max<std::size_t> (1, total / kOriginSamples);
+  std::vector<double> values[3];
   for (std::size_t c = 0; c < clouds.size (); ++c)
-    fields[c].extendBounds (*clouds[c], low, high);
+    fields[c].sampleCoordinates (*clouds[c], stride, values);
+  double origin[3];
+  for (int d = 0; d < 3; ++d)
+    origin[d] = median (values[d]);
   for (XyzFields &f : fields)
     for (int d = 0; d < 3; ++d)
-      f.origin_[d] = centre (low[d], high[d]);
+      f.origin_[d] = origin[d];
 }
 
 void
 XyzFields::centreOn (const pcl::PCLPointCloud2 &cloud)
 {
-  double low[3], high[3];
-  emptyBounds (low, high);
-  extendBounds (cloud, low, high);
+  std::vector<XyzFields> one = {*this};
+  setCommonOrigin (one, {&cloud});
   for (int d = 0; d < 3; ++d)
-    origin_[d] = centre (low[d], high[d]);
+    origin_[d] = one[0].origin_[d];
 }
 
 void

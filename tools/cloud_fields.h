@@ -53,9 +53,11 @@ private:
     std::uint32_t offset;
     std::uint8_t datatype;
   };
-  /** Widens [low, high] per axis by the finite points' double coordinates. */
+  /** Appends the double coordinates of every `stride`-th point with finite x, y, z to
+   *  values[axis] (nothing on an axis stored as float). */
   void
-  extendBounds (const pcl::PCLPointCloud2 &cloud, double low[3], double high[3]) const;
+  sampleCoordinates (const pcl::PCLPointCloud2 &cloud, std::size_t stride,
+                     std::vector<double> values[3]) const;
 
   Field field_[3];
   /** What extract() subtracts from the coordinates (in double, before they become
@@ -63,11 +65,13 @@ private:
   double origin_[3] = {0.0, 0.0, 0.0};
 };
 
-/** \brief Gives every cloud's fields the same origin: the centre of the bounding box of
- *  the finite points' double coordinates, per axis (0 on an axis stored as float in every
- *  cloud). Geo-referenced coordinates (UTM: millions of metres) stored as doubles keep
- *  their precision through the filters, which work in float: at 4,000,000 m a float
- *  steps by 0.25 m. One origin for all, so that the frames of a sequence stay in one
+/** \brief Gives every cloud's fields the same origin: the median of the finite points'
+ *  double coordinates, per axis (of every s-th point, about a million in all; 0 on an
+ *  axis stored as float in every cloud). Geo-referenced coordinates (UTM: millions of
+ *  metres) stored as doubles keep their precision through the filters, which work in
+ *  float: at 4,000,000 m a float steps by 0.25 m. A median, so that a stray point (an
+ *  exported (0, 0, 0)) cannot pull the origin away from the cloud as the centre of the
+ *  bounding box did. One origin for all, so that the frames of a sequence stay in one
  *  frame of reference. */
 void
 setCommonOrigin (std::vector<XyzFields> &fields, const std::vector<const pcl::PCLPointCloud2 *> &clouds);
