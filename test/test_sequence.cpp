@@ -100,6 +100,43 @@ TEST (SequenceSmoothing, NoTemporalLinkIsTheStaticFilterFrameByFrame)
   }
 }
 
+TEST (SequenceSmoothing, TheSmoothersOwnInputAndIndicesAreLeftAsTheyWere)
+{
+  // A smoother the caller also uses on its own, with an input cloud and indices of 3
+  // points: the sequence smooths whole frames and gives both back (the static path set
+  // them to null, dropping the caller's indices and cloud).
+  const Frames frames = sphereSequence (3, 800, 0.02, 23);
+  auto mine = std::make_shared<pcl::PointCloud<pcl::PointXYZ>> (*frames[0]);
+  auto indices = std::make_shared<pcl::Indices> (pcl::Indices{4, 5, 6});
+  for (int variant = 0; variant < 2; ++variant)
+  {
+    auto smoother = std::make_shared<GraphTVSmoothing<pcl::PointXYZ>> ();
+    smoother->setInputCloud (mine);
+    smoother->setIndices (indices);
+    GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+    sequence.setSmoother (smoother);
+    if (variant == 0)
+      sequence.setKTemporal (0);  // the static path; else the temporal one
+    Outputs out;
+    ASSERT_TRUE (sequence.filter (frames, out));
+    EXPECT_EQ (smoother->getInputCloud (), mine) << variant;
+    EXPECT_EQ (smoother->getIndices (), indices) << variant;
+    // Still the caller's filter: its three points move, the others do not.
+    pcl::PointCloud<pcl::PointXYZ> alone;
+    smoother->filter (alone);
+    std::size_t moved = 0;
+    for (std::size_t i = 0; i < mine->size (); ++i)
+      moved += alone[i].getVector3fMap () != (*mine)[i].getVector3fMap ();
+    EXPECT_LE (moved, 3u) << variant;
+    EXPECT_GT (moved, 0u) << variant;
+    // Whole frames were smoothed nonetheless.
+    std::size_t frame_moved = 0;
+    for (std::size_t i = 0; i < frames[1]->size (); ++i)
+      frame_moved += (*out[1])[i].getVector3fMap () != (*frames[1])[i].getVector3fMap ();
+    EXPECT_GT (frame_moved, frames[1]->size () / 2) << variant;
+  }
+}
+
 TEST (SequenceSmoothing, NeighbouringFramesLowerTheErrorOfAStaticScene)
 {
   // Four frames of one sphere with independent noise: each frame's points gain the
@@ -272,6 +309,35 @@ TEST (SequenceSmoothing, StreamingGivesTheBatchResultWithBoundedMemory)
       if (i % 7 == 0)
         EXPECT_TRUE (std::isnan ((*batch[3])[i].y));
   }
+}
+
+TEST (SequenceSmoothing, AWindowLoweredMidStreamStillReturnsEveryFrame)
+{
+  // Window 2, then 0 after three frames: each push returns one frame, so the two waiting
+  // frames keep the delay at 2 (as documented) and flush() returns them; none is lost or
+  // returned twice.
+  const Frames frames = sphereSequence (6, 600, 0.02, 43);
+  GraphSequenceSmoothing<pcl::PointXYZ> sequence;
+  sequence.setTemporalWindow (2);
+  std::size_t returned = 0;
+  for (std::size_t t = 0; t < frames.size (); ++t)
+  {
+    if (t == 3)
+      sequence.setTemporalWindow (0);
+    Cloud::Ptr ready;
+    ASSERT_TRUE (sequence.push (frames[t], ready));
+    EXPECT_EQ (bool (ready), t >= 2) << "frame " << t;
+    if (ready)
+    {
+      EXPECT_EQ (ready->size (), frames[returned]->size ());
+      ++returned;
+    }
+    EXPECT_EQ (sequence.getNumberOfPendingFrames (), std::min<std::size_t> (t + 1, 2)) << t;
+  }
+  Outputs rest;
+  ASSERT_TRUE (sequence.flush (rest));
+  EXPECT_EQ (returned + rest.size (), frames.size ());
+  EXPECT_EQ (rest.size (), 2u);
 }
 
 TEST (SequenceSmoothing, AFrameDependsOnlyOnTheFramesOfItsWindow)

@@ -37,9 +37,10 @@ namespace pcl_graph_denoise {
  *
  * The smoothing itself is a configured GraphTikhonovSmoothing (default) or
  * GraphTVSmoothing (setSmoother): its k is k1, and its theta, gamma, refinements,
- * solver settings, threads and memory limit apply; its input cloud and indices are
- * replaced (by each frame, all its points). With one frame, or k2 = 0, or window = 0, each frame is denoised by that static
- * filter on its own, bit for bit.
+ * solver settings, threads and memory limit apply; its own input cloud and indices are
+ * not used (each frame is smoothed whole) and are left as they were. With one frame,
+ * or k2 = 0, or window = 0, each frame is denoised by that static filter on its own, bit
+ * for bit.
  *
  * Output: one cloud per frame, a copy of the frame (size, order, organisation, header
  * and every field) in which only x, y, z of the finite points moved. Invalid parameters
@@ -137,7 +138,10 @@ public:
    *  Returns false with a PCL_ERROR (and `denoised` null) on a null frame or invalid
    *  parameters, in which case the frame is not added; or when the due frame's solve
    *  fails, in which case that frame is consumed and reported lost. The result is
-   *  that of filter() on all frames pushed, frame by frame. */
+   *  that of filter() on all frames pushed, frame by frame. Each push returns at most
+   *  one frame: after setTemporalWindow lowers the window mid-stream, the frames already
+   *  waiting still come out one per push, so the delay stays at the old window until
+   *  flush() (which returns every waiting frame). */
   bool
   push (const PointCloudConstPtr &frame, PointCloudPtr &denoised);
 

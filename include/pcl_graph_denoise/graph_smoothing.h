@@ -88,6 +88,7 @@ class GraphSmoothing : public pcl::Filter<PointT>
 protected:
   using PointCloud = typename pcl::Filter<PointT>::PointCloud;  ///< the cloud type filtered
   using pcl::Filter<PointT>::fake_indices_;
+  using pcl::Filter<PointT>::use_indices_;
   using pcl::Filter<PointT>::filter_name_;
   using pcl::Filter<PointT>::getClassName;
   using pcl::Filter<PointT>::indices_;

@@ -166,11 +166,27 @@ GraphSequenceSmoothing<PointT>::denoiseFrame (const std::vector<PointCloudConstP
   // Only the centre frame with k2 = 0 or a window of one frame: the static filter itself.
   if (k_temporal_ == 0 || window_ == 0 || window_frames.size () == 1)
   {
+    // On the whole frame; the caller's own input cloud and indices of the smoother are
+    // put back afterwards (they were cleared), also when the call throws.
+    struct Restore
+    {
+      Smoother &s;
+      PointCloudConstPtr input;
+      pcl::IndicesPtr indices;
+      bool use_indices, fake_indices;
+      ~Restore ()
+      {
+        s.input_ = input;
+        s.indices_ = indices;
+        s.use_indices_ = use_indices;
+        s.fake_indices_ = fake_indices;
+      }
+    } restore{smoother, smoother.input_, smoother.indices_, smoother.use_indices_,
+              smoother.fake_indices_};
     smoother.setInputCloud (window_frames[centre]);
     smoother.setIndices (pcl::IndicesPtr ());
     output.reset (new PointCloud);
     smoother.filter (*output);
-    smoother.setInputCloud (PointCloudConstPtr ());
     if (output->size () != frame.size ())
     {
       PCL_ERROR ("[pcl_graph_denoise::%s::filter] The smoothing of a frame of %zu points "
