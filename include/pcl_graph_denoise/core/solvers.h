@@ -165,12 +165,12 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
                      const TotalVariationParams &params = {}, SolverReport *report = nullptr);
 
 /** \brief The total-variation problem of one graph and strength, set up once and solved for
- *  any number of signals (as TikhonovSystem): the entries' sqrt(w), the vertices' steps and
- *  the graph's components come with the constructor, and the solver's working arrays (the
- *  duals, 12 bytes per stored entry, and 36 bytes per vertex, 48 where a tolerance needs the
- *  dual step's differences in double) are allocated by the first solve and kept for the
- *  system's lifetime instead of being allocated and faulted in
- *  again. Twicing (the filters' shrinkage correction) solves the same problem twice;
+ *  any number of signals (as TikhonovSystem): the undirected edges, each once, with their
+ *  sqrt(w) (8 bytes per edge, half the stored entries), the vertices' steps and the graph's
+ *  components come with the constructor, and the solver's working arrays (the duals, 12
+ *  bytes per edge, and 36 bytes per vertex, 48 where a tolerance needs the dual step's
+ *  differences in double) are allocated by the first solve and kept for the system's
+ *  lifetime instead of being allocated and faulted in again. Twicing (the filters' shrinkage correction) solves the same problem twice;
  *  solveTotalVariation is one system solved once, and each solve here gives the same result
  *  as solveTotalVariation with the same settings, bit for bit. The graph must outlive the
  *  system; solve() is not for concurrent calls on one system (it writes those arrays). */
