@@ -790,7 +790,8 @@ TEST (TotalVariationSolver, TheVertexOrderDoesNotMoveTheMinimiser)
     const std::size_t from = n - 1 - v;
     reversed.order[v] = p.graph.order[from];
     g.row (Eigen::Index (v)) = p.f.row (Eigen::Index (from));
-    for (std::uint64_t e = p.graph.row_ptr[from]; e < p.graph.row_ptr[from + 1]; ++e)
+    // Backwards along the row, so that the new row is sorted as a PointGraph's must be.
+    for (std::uint64_t e = p.graph.row_ptr[from + 1]; e-- > p.graph.row_ptr[from];)
     {
       reversed.col.push_back (static_cast<VertexIndex> (n - 1 - p.graph.col[e]));
       reversed.weight.push_back (p.graph.weight[e]);
@@ -799,6 +800,9 @@ TEST (TotalVariationSolver, TheVertexOrderDoesNotMoveTheMinimiser)
   }
   reversed.sigma = p.graph.sigma;
   reversed.spacing = p.graph.spacing;
+  for (std::size_t v = 0; v < n; ++v)
+    ASSERT_TRUE (std::is_sorted (reversed.col.begin () + std::ptrdiff_t (reversed.row_ptr[v]),
+                                 reversed.col.begin () + std::ptrdiff_t (reversed.row_ptr[v + 1])));
   TotalVariationParams params;
   params.tolerance = 1e-6;
   params.max_iterations = 20000;
