@@ -37,18 +37,18 @@ namespace core {
 
 namespace {
 
-/** The duals, one array per coordinate (column-major), so that the update of a row's
- *  entries runs over consecutive floats. */
+/** The duals, one per edge, one array per coordinate (column-major), so that the update
+ *  of consecutive edges runs over consecutive floats. */
 using Duals = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::ColMajor>;
 
 /** x-bar of the solver, in single precision (see TotalVariationSystem::Impl::solve). */
 using FloatSignal = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
-/** The entries of a vertex range are updated a batch of consecutive entries at a time
- *  (across row ends): their differences gathered first, then the dual step, the projection
- *  and the weighting by sqrt(w) over the batch as over plain arrays (vectorised: the file
- *  is compiled without errno and trap semantics for it), then each row's adjoint summed
- *  in entry order. */
+/** The edges of a block are updated a batch of consecutive edges at a time (across row
+ *  ends): their differences gathered first, then the dual step, the projection and the
+ *  weighting by sqrt(w) over the batch as over plain arrays (vectorised: the file is
+ *  compiled without errno and trap semantics for it), then the adjoint summed in edge
+ *  order. */
 constexpr std::size_t kDualBatch = 64;
 
 /** The dual pass's blocks of vertices (parallelSum's blocks, fixed whatever the threads):
@@ -613,9 +613,9 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
   // one point far from the rest, keeps its differences: each is rounded to about 2^-24
   // times the component's extent (within twice the resolution of a float coordinate at
   // the component's far end; at a thousand spacings across, 6e-5 of a spacing), which
-  // only perturbs the dual steps. Every entry with a weight joins two vertices of one
-  // component (the graph is symmetric), so its difference keeps x-bar's origin out and
-  // stays exactly odd in (i, j). The iterate x, the objective and the gap stay in double.
+  // only perturbs the dual steps. Every edge with a weight joins two vertices of one
+  // component, so its difference keeps x-bar's origin out. The iterate x, the objective
+  // and the gap stay in double.
   const VertexIndex *roots = component_root.empty () ? nullptr : component_root.data ();
   const auto originOf = [&] (std::size_t i) {
     return f.data () + 3 * std::size_t (roots ? roots[i] : 0);
