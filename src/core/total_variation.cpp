@@ -188,8 +188,8 @@ private:
     for (int c = 0; c < 3; ++c)
       g[c] = l[c] + acc_[c];
     acc_[0] = acc_[1] = acc_[2] = 0.0;
-    ++row_;
-    row_end_ = ptr_[row_ + 1];
+    if (++row_ < end_)  // (past the block's last row there is no next end to read)
+      row_end_ = ptr_[row_ + 1];
   }
 
   const std::uint64_t *ptr_;
