@@ -139,7 +139,8 @@ public:
   BlockAdjoint (const EdgeArrays &edges, double *gty, std::size_t begin, std::size_t end,
                 std::vector<double> &lower)
   : ptr_ (edges.ptr), col_ (edges.col), gty_ (gty), begin_ (begin), end_ (end), row_ (begin),
-    row_end_ (edges.ptr[begin + 1]), cross_ (edges.cross + 3 * edges.block_cross[begin / kDualBlock]),
+    row_end_ (edges.ptr[begin + 1]),
+    cross_ (edges.cross ? edges.cross + 3 * edges.block_cross[begin / kDualBlock] : nullptr),
     lower_ (lower)
   {
     lower_.assign (3 * (end - begin), 0.0);
