@@ -136,12 +136,11 @@ struct EdgeArrays
 class BlockAdjoint
 {
 public:
-  BlockAdjoint (const EdgeArrays &edges, double *gty, std::size_t begin, std::size_t end,
-                std::vector<double> &lower)
+  BlockAdjoint (const EdgeArrays &edges, double *gty, std::size_t begin, std::size_t end)
   : ptr_ (edges.ptr), col_ (edges.col), gty_ (gty), begin_ (begin), end_ (end), row_ (begin),
     row_end_ (edges.ptr[begin + 1]),
     cross_ (edges.cross ? edges.cross + 3 * edges.block_cross[begin / kDualBlock] : nullptr),
-    lower_ (lower)
+    lower_ (scratch ())
   {
     lower_.assign (3 * (end - begin), 0.0);
   }
@@ -181,6 +180,15 @@ public:
   }
 
 private:
+  /** The calling thread's sums to come, kept from block to block (and iteration to
+   *  iteration on a thread that stays): no allocation per block of a solver's pass. */
+  static std::vector<double> &
+  scratch ()
+  {
+    thread_local std::vector<double> lower;
+    return lower;
+  }
+
   PCL_GRAPH_DENOISE_KERNEL inline void
   nextRow ()
   {
@@ -248,7 +256,7 @@ struct DualPass
  *  detail::wide. */
 template <typename Bar>
 PCL_GRAPH_DENOISE_KERNEL inline double
-dualPass (const DualPass<Bar> &p, std::size_t begin, std::size_t end, std::vector<double> &lower)
+dualPass (const DualPass<Bar> &p, std::size_t begin, std::size_t end)
 {
   float d[3][kDualBatch];
   double dx[3][kDualBatch];
@@ -257,7 +265,7 @@ dualPass (const DualPass<Bar> &p, std::size_t begin, std::size_t end, std::vecto
   const std::uint64_t last = ptr[end];
   std::size_t row = begin;  // the gather's row, with its end
   std::uint64_t row_end = ptr[begin + 1];
-  BlockAdjoint adjoint (p.edges, p.gty, begin, end, lower);
+  BlockAdjoint adjoint (p.edges, p.gty, begin, end);
   for (std::uint64_t first = ptr[begin]; first < last; first += kDualBatch)
   {
     const std::size_t count =
@@ -317,25 +325,29 @@ dualPass (const DualPass<Bar> &p, std::size_t begin, std::size_t end, std::vecto
   return variation;
 }
 
-/** TV(x) over the solver's edges (each once), with their single-precision sqrt(w): the
- *  variation the dual pass sums with a check, summed the same way. */
+/** The sum over a CSR's entries (row_ptr over n rows, col, weight) of the norms of
+ *  sqrt(w) (x_i - x_j), a block of rows at a time, each block's entries a batch at a time
+ *  (their differences gathered first and their norms computed over the batch, vectorised),
+ *  summed in entry order: weight is w (kRoot false) or sqrt(w) (kRoot true), as in
+ *  batchVariation. */
+template <bool kRoot>
 double
-edgeVariation (const EdgeArrays &edges, std::size_t n, const Signal3 &x, TotalVariationNorm norm,
-               int num_threads)
+csrVariation (const std::uint64_t *row_ptr, const VertexIndex *col, const float *weight,
+              std::size_t n, const Signal3 &x, TotalVariationNorm norm, int num_threads)
 {
   const double *points = x.data ();
   const auto kernel = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
     double sum = 0.0;
     double d[3][kDualBatch];
     std::size_t i = begin;
-    std::uint64_t row_end = edges.ptr[begin + 1];
-    const std::uint64_t last = edges.ptr[end];
-    for (std::uint64_t first = edges.ptr[begin]; first < last; first += kDualBatch)
+    std::uint64_t row_end = row_ptr[begin + 1];
+    const std::uint64_t last = row_ptr[end];
+    for (std::uint64_t first = row_ptr[begin]; first < last; first += kDualBatch)
     {
       const std::size_t count =
           static_cast<std::size_t> (std::min<std::uint64_t> (kDualBatch, last - first));
-      gatherDifferences (edges.ptr, edges.col, points, first, count, i, row_end, d);
-      sum = batchVariation<true> (d, edges.root_weight + first, count, norm, sum);
+      gatherDifferences (row_ptr, col, points, first, count, i, row_end, d);
+      sum = batchVariation<kRoot> (d, weight + first, count, norm, sum);
     }
     return sum;
   };
@@ -345,33 +357,23 @@ edgeVariation (const EdgeArrays &edges, std::size_t n, const Signal3 &x, TotalVa
       kDualBlock);
 }
 
-/** TV(x) = 1/2 sum over stored entries of the norm of sqrt(w) (x_i - x_j). A block's
- *  entries are taken a batch at a time, their differences gathered first and their norms
- *  computed over the batch (vectorised), then summed in entry order. */
+/** TV(x) over the solver's edges (each once), with their single-precision sqrt(w): the
+ *  variation the dual pass sums with a check. */
+double
+edgeVariation (const EdgeArrays &edges, std::size_t n, const Signal3 &x, TotalVariationNorm norm,
+               int num_threads)
+{
+  return csrVariation<true> (edges.ptr, edges.col, edges.root_weight, n, x, norm, num_threads);
+}
+
+/** TV(x) = 1/2 sum over the graph's stored entries (each edge twice) of the norm of
+ *  sqrt(w) (x_i - x_j). */
 double
 totalVariation (const PointGraph &graph, const Signal3 &x, TotalVariationNorm norm,
                 int num_threads)
 {
-  const double *points = x.data ();
-  const auto kernel = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
-    double sum = 0.0;
-    double d[3][kDualBatch];
-    std::size_t i = begin;
-    std::uint64_t row_end = graph.row_ptr[begin + 1];
-    const std::uint64_t last = graph.row_ptr[end];
-    for (std::uint64_t first = graph.row_ptr[begin]; first < last; first += kDualBatch)
-    {
-      const std::size_t count =
-          static_cast<std::size_t> (std::min<std::uint64_t> (kDualBatch, last - first));
-      gatherDifferences (graph.row_ptr.data (), graph.col.data (), points, first, count, i,
-                         row_end, d);
-      sum = batchVariation<false> (d, graph.weight.data () + first, count, norm, sum);
-    }
-    return sum;
-  };
-  return 0.5 * detail::parallelSum<double> (
-                   graph.numVertices (), num_threads,
-                   [&] (std::size_t begin, std::size_t end) { return detail::wide (kernel, begin, end); });
+  return 0.5 * csrVariation<false> (graph.row_ptr.data (), graph.col.data (), graph.weight.data (),
+                                    graph.numVertices (), x, norm, num_threads);
 }
 
 } // namespace
@@ -633,10 +635,9 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
   // f's total variation comes with the warm start (the cold start's objective), summed
   // over the same edges.
   const EdgeArrays edges = this->edges ();
-  const auto warm_kernel = [&] (std::size_t begin, std::size_t end,
-                                std::vector<double> &lower) PCL_GRAPH_DENOISE_KERNEL {
+  const auto warm_kernel = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
     double variation = 0.0;
-    BlockAdjoint adjoint (edges, gty.data (), begin, end, lower);
+    BlockAdjoint adjoint (edges, gty.data (), begin, end);
     for (std::size_t i = begin; i < end; ++i)
       for (std::uint64_t e = edges.ptr[i]; e < edges.ptr[i + 1]; ++e)
       {
@@ -667,9 +668,7 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
         detail::parallelSum<double> (
             n, threads,
             [&] (std::size_t begin, std::size_t end) {
-              std::vector<double> lower;
-              return detail::wide ([&] (std::size_t b, std::size_t e) { return warm_kernel (b, e, lower); },
-                                   begin, end);
+              return detail::wide (warm_kernel, begin, end);
             },
             kDualBlock);
     detail::parallelFor (n, threads, [&] (std::size_t begin, std::size_t end) {
@@ -818,9 +817,8 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
       return detail::parallelSum<double> (
           n, threads,
           [&] (std::size_t begin, std::size_t end) {
-            std::vector<double> lower;
             const auto dual = [&] (std::size_t b, std::size_t e) PCL_GRAPH_DENOISE_KERNEL {
-              return dualPass (pass, b, e, lower);
+              return dualPass (pass, b, e);
             };
             return detail::wide (dual, begin, end);
           },
