@@ -9,6 +9,7 @@
 #include <pcl_graph_denoise/core/operators.h>
 
 #include "components.h"
+#include "wide_kernels.h"
 #include "synthetic.h"
 #include "test_clouds.h"
 
@@ -1445,6 +1446,53 @@ TEST (Normals, BlendedQuadricsAverageOutTheFitsNoise)
     sine += d.cross (f.row (v).transpose ().normalized ()).norm ();
   }
   EXPECT_LT (sine / double (n), 0.15);
+}
+
+TEST (Normals, TheKernelsExpMatchesTheLibrarysAndTheAvx2BuildTheBaseline)
+{
+  // The quadric fits' and the blend's weights come from detail::expOfNonPositive, plain
+  // arithmetic the compiler vectorises: within a few units in the last place of
+  // std::exp down to -708, 0 below it (and for NaN), exp(0) = 1 exactly.
+  EXPECT_EQ (detail::expOfNonPositive (0.0), 1.0);
+  EXPECT_EQ (detail::expOfNonPositive (-0.0), 1.0);
+  EXPECT_EQ (detail::expOfNonPositive (-709.0), 0.0);
+  EXPECT_EQ (detail::expOfNonPositive (-1e300), 0.0);
+  EXPECT_EQ (detail::expOfNonPositive (-std::numeric_limits<double>::infinity ()), 0.0);
+  EXPECT_EQ (detail::expOfNonPositive (std::numeric_limits<double>::quiet_NaN ()), 0.0);
+  std::mt19937_64 rng (3);
+  std::uniform_real_distribution<double> wide (-708.0, 0.0), near (-1.0, 0.0);
+  double worst = 0.0;
+  for (int trial = 0; trial < 200000; ++trial)
+  {
+    const double x = trial % 2 ? wide (rng) : near (rng);
+    const double exact = std::exp (x);
+    worst = std::max (worst, std::abs (detail::expOfNonPositive (x) - exact) / exact);
+  }
+  EXPECT_LT (worst, 5e-16);
+  // The quadric step (robust fits, adaptive support, blend) gives the same bits in the
+  // AVX2 build of its kernels and in the baseline one.
+  if (!detail::setWideKernels (true))
+    GTEST_SKIP () << "this processor has no AVX2: only the baseline build runs here";
+  std::normal_distribution<double> g (0.0, 1.0);
+  const Eigen::Index n = 3000;
+  Signal3 noisy (n, 3);
+  for (Eigen::Index i = 0; i < n; ++i)
+  {
+    const Eigen::Vector3d p = Eigen::Vector3d (g (rng), g (rng), g (rng)).normalized ();
+    noisy.row (i) = (p + 0.01 * Eigen::Vector3d (g (rng), g (rng), g (rng))).transpose ();
+  }
+  const PointGraph graph = buildKnnGraph (noisy.cast<float> ());
+  const Signal3 f = inVertexOrder (graph, noisy);
+  const auto run = [&] () {
+    return quadricDisplacement (graph, f, f, 0.01, 0, QuadricProjection::BLENDED,
+                                QuadricSupport::ADAPTIVE, 3);
+  };
+  const Signal3 with_avx2 = run ();
+  detail::setWideKernels (false);
+  const Signal3 baseline = run ();
+  detail::setWideKernels (true);
+  EXPECT_TRUE (with_avx2 == baseline);
+  EXPECT_FALSE (with_avx2 == f);
 }
 
 TEST (Normals, AdaptiveSupportWidensTheFitsOnlyWhereTheSurfaceIsSmoothAtThatScale)

@@ -9,6 +9,7 @@
 #include "parallel.h"
 #include "spatial_order.h"
 #include "two_ring.h"
+#include "wide_kernels.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -16,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include <stdexcept>
@@ -167,10 +169,11 @@ struct Patch
 };
 
 /** The ring points of one fit in its patch's frame, as columns: tangential coordinates
- *  (over the patch radius), height along the normal and weight. Padded with a
- *  zero-weight point to an even count, so that QuadricSystem sums them two at a time. */
+ *  (over the patch radius), height along the normal and weight. Padded with zero-weight
+ *  points to a multiple of kLanes, so that QuadricSystem sums them kLanes at a time. */
 struct Samples
 {
+  static constexpr std::size_t kLanes = 4;
   std::vector<double> a, b, h, w;
   std::size_t count = 0;  ///< the points, without the padding
 
@@ -178,14 +181,14 @@ struct Samples
   resize (std::size_t n)
   {
     count = n;
-    const std::size_t padded = n + (n & 1);
+    const std::size_t padded = (n + kLanes - 1) / kLanes * kLanes;
     a.resize (padded);
     b.resize (padded);
     h.resize (padded);
     w.resize (padded);
-    a.back () = b.back () = h.back () = 0.0;  // the padding, if any
-    std::fill (w.begin (), w.end (), 1.0);
-    w.back () = n & 1 ? 0.0 : 1.0;
+    std::fill (w.begin (), w.begin () + n, 1.0);
+    for (std::size_t r = n; r < padded; ++r)
+      a[r] = b[r] = h[r] = w[r] = 0.0;  // the padding
   }
 
   std::size_t
@@ -195,55 +198,58 @@ struct Samples
 /** The weighted least-squares system of a quadric height field, sum_r w_r phi_r phi_r^T q
  *  = sum_r w_r h_r phi_r over the basis, from its 15 distinct moments sum w a^p b^q
  *  (p + q <= 4) and 6 right-hand moments sum w h a^p b^q (p + q <= 2): half the work of
- *  the 6 x 6 outer products. The samples are summed in pairs, the even ones in one lane
- *  and the odd ones in the other, then the lanes added: the same sums on every machine,
- *  in half the instructions where the processor has two-lane vectors. */
+ *  the 6 x 6 outer products. The samples are summed in Samples::kLanes lanes, sample r in
+ *  lane r mod kLanes, then the lanes added pairwise: the same sums on every machine, in a
+ *  kernel (wide_kernels.h) that the compiler vectorises, four lanes to an instruction in
+ *  the AVX2 build. */
 class QuadricSystem
 {
 public:
   explicit QuadricSystem (const Samples &s)
   {
-    using Pair = Eigen::Array2d;
-    Pair m[15], r[6];
-    for (Pair &v : m)
-      v.setZero ();
-    for (Pair &v : r)
-      v.setZero ();
-    for (std::size_t k = 0; k < s.padded (); k += 2)
-    {
-      const Pair a = Eigen::Map<const Pair> (s.a.data () + k);
-      const Pair b = Eigen::Map<const Pair> (s.b.data () + k);
-      const Pair h = Eigen::Map<const Pair> (s.h.data () + k);
-      const Pair w = Eigen::Map<const Pair> (s.w.data () + k);
-      const Pair wa = w * a, wb = w * b;
-      const Pair wa2 = wa * a, wab = wa * b, wb2 = wb * b;
-      const Pair wa3 = wa2 * a, wa2b = wa2 * b, wab2 = wab * b, wb3 = wb2 * b;
-      m[0] += w;
-      m[1] += wa;
-      m[2] += wb;
-      m[3] += wa2;
-      m[4] += wab;
-      m[5] += wb2;
-      m[6] += wa3;
-      m[7] += wa2b;
-      m[8] += wab2;
-      m[9] += wb3;
-      m[10] += wa3 * a;
-      m[11] += wa3 * b;
-      m[12] += wa2b * b;
-      m[13] += wab2 * b;
-      m[14] += wb3 * b;
-      r[0] += wa2 * h;
-      r[1] += wab * h;
-      r[2] += wb2 * h;
-      r[3] += wa * h;
-      r[4] += wb * h;
-      r[5] += w * h;
-    }
+    constexpr std::size_t L = Samples::kLanes;
+    double m[15][L] = {}, r[6][L] = {};
+    const auto sum = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
+      const double *__restrict sa = s.a.data (), *__restrict sb = s.b.data ();
+      const double *__restrict sh = s.h.data (), *__restrict sw = s.w.data ();
+      double lm[15][L] = {}, lr[6][L] = {};
+      for (std::size_t k = begin; k < end; k += L)
+        for (std::size_t l = 0; l < L; ++l)
+        {
+          const double a = sa[k + l], b = sb[k + l], h = sh[k + l], w = sw[k + l];
+          const double wa = w * a, wb = w * b;
+          const double wa2 = wa * a, wab = wa * b, wb2 = wb * b;
+          const double wa3 = wa2 * a, wa2b = wa2 * b, wab2 = wab * b, wb3 = wb2 * b;
+          lm[0][l] += w;
+          lm[1][l] += wa;
+          lm[2][l] += wb;
+          lm[3][l] += wa2;
+          lm[4][l] += wab;
+          lm[5][l] += wb2;
+          lm[6][l] += wa3;
+          lm[7][l] += wa2b;
+          lm[8][l] += wab2;
+          lm[9][l] += wb3;
+          lm[10][l] += wa3 * a;
+          lm[11][l] += wa3 * b;
+          lm[12][l] += wa2b * b;
+          lm[13][l] += wab2 * b;
+          lm[14][l] += wb3 * b;
+          lr[0][l] += wa2 * h;
+          lr[1][l] += wab * h;
+          lr[2][l] += wb2 * h;
+          lr[3][l] += wa * h;
+          lr[4][l] += wb * h;
+          lr[5][l] += w * h;
+        }
+      std::memcpy (m, lm, sizeof (m));
+      std::memcpy (r, lr, sizeof (r));
+    };
+    detail::wide (sum, 0, s.padded ());
     for (int i = 0; i < 15; ++i)
-      m_[i] = m[i][0] + m[i][1];
+      m_[i] = (m[i][0] + m[i][1]) + (m[i][2] + m[i][3]);
     for (int i = 0; i < 6; ++i)
-      r_[i] = r[i][0] + r[i][1];
+      r_[i] = (r[i][0] + r[i][1]) + (r[i][2] + r[i][3]);
   }
 
   /** The normal matrix over the basis (a^2, ab, b^2, a, b, 1). */
@@ -344,17 +350,20 @@ fitPatch (const Signal3 &x, const std::vector<VertexIndex> &ring, std::size_t i,
   {
     if (robust)
     {
-      // The exponents first, then their exponentials over the whole ring at once: Eigen's
-      // vectorised exp, the same weights to rounding (one std::exp per sample was the
-      // largest single cost of the fits).
-      for (std::size_t r = 0; r < samples.count; ++r)
-      {
-        const double t = (samples.h[r] - quadricHeight (patch.q, samples.a[r], samples.b[r])) / noise;
-        samples.w[r] = -0.5 * t * t;
-      }
-      auto w = Eigen::Map<Eigen::ArrayXd> (samples.w.data (),
-                                           static_cast<Eigen::Index> (samples.count));
-      w = w.exp ();
+      // Over the whole ring in a kernel, with the vectorised exp (one std::exp per
+      // sample was the largest single cost of the fits).
+      const Basis q = patch.q;
+      const auto weigh = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
+        const double *__restrict sa = samples.a.data (), *__restrict sb = samples.b.data ();
+        const double *__restrict sh = samples.h.data ();
+        double *__restrict sw = samples.w.data ();
+        for (std::size_t r = begin; r < end; ++r)
+        {
+          const double t = (sh[r] - quadricHeight (q, sa[r], sb[r])) / noise;
+          sw[r] = detail::expOfNonPositive (-0.5 * t * t);
+        }
+      };
+      detail::wide (weigh, 0, samples.count);
     }
     Basis solved;
     if (!solveQuadric (samples, solved))
@@ -540,6 +549,10 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
   detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
     std::vector<VertexIndex> ring;
     detail::TwoRing two_ring;
+    // Each patch's exponent (then its weight) and the point it moves f_i to; the weights
+    // are taken over the ring at once in a kernel (wide_kernels.h).
+    std::vector<double> weight;
+    std::vector<Eigen::Vector3d> moved;
     const Patch none;  // of a vertex that carries none
     for (std::size_t i = begin; i < end; ++i)
     {
@@ -550,8 +563,8 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
       const Eigen::Vector3d fi = f.row (i).transpose ();
       const Eigen::Vector3d xi = x.row (i).transpose ();
       const double reach = limit (i);
-      Eigen::Vector3d sum = Eigen::Vector3d::Zero ();
-      double total = 0.0;
+      weight.clear ();
+      moved.clear ();
       for (VertexIndex j : ring)
       {
         if (slot[j] == kNoPatch)
@@ -567,9 +580,21 @@ quadricDisplacement (const PointGraph &graph, const Signal3 &f, const Signal3 &x
           const double t = (patch.height (a, b) - (xi - patch.origin).dot (patch.normal)) / noise;
           exponent += 0.5 * t * t;
         }
-        const double w = std::exp (-exponent);
-        sum += w * (fi + patch.move (fi, reach) * patch.normal);
-        total += w;
+        weight.push_back (-exponent);
+        moved.push_back (fi + patch.move (fi, reach) * patch.normal);
+      }
+      const auto weigh = [&] (std::size_t b, std::size_t e) PCL_GRAPH_DENOISE_KERNEL {
+        double *__restrict w = weight.data ();
+        for (std::size_t k = b; k < e; ++k)
+          w[k] = detail::expOfNonPositive (w[k]);
+      };
+      detail::wide (weigh, 0, weight.size ());
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero ();
+      double total = 0.0;
+      for (std::size_t k = 0; k < weight.size (); ++k)
+      {
+        sum += weight[k] * moved[k];
+        total += weight[k];
       }
       // When every patch ignores it, its own surface (a point without one keeps x_i).
       if (!(total > 0.0) && !own.valid ())
