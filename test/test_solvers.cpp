@@ -1162,9 +1162,13 @@ TEST (NoiseLevel, MeasuresHowTheSurfaceBends)
   const PointMatrix m = toMatrix (synthetic::noisySphere (20000, 1.0, 0.01, 6));
   EXPECT_NEAR (noiseOf (1000.0f * m).curvature, noiseOf (m).curvature / 1000.0, 1e-3 * noiseOf (m).curvature / 1000.0);
   EXPECT_EQ (noiseOf (m, 1).curvature, noiseOf (m, 2).curvature);
+  // Noise of several spacings buries the bending of a dense sphere: every ball is as
+  // thick as the noise, read as no bending (0), not as "not measured".
+  EXPECT_EQ (noiseOf (toMatrix (synthetic::noisySphere (50000, 1.0, 0.08, 11))).curvature, 0.0);
   // Not measured without edges or on one spot.
-  EXPECT_EQ (noiseOf (PointMatrix::Zero (3, 3)).curvature, 0.0);
-  EXPECT_EQ (noiseOf (PointMatrix::Ones (100, 3)).curvature, 0.0);
+  EXPECT_EQ (noiseOf (PointMatrix::Zero (3, 3)).curvature, -1.0);
+  EXPECT_EQ (noiseOf (PointMatrix::Ones (100, 3)).curvature, -1.0);
+  EXPECT_EQ (NoiseEstimate{}.curvature, -1.0);
 }
 
 TEST (DefaultGamma, DetailFactorFollowsTheDetailLengthInSpacings)
@@ -1179,10 +1183,13 @@ TEST (DefaultGamma, DetailFactorFollowsTheDetailLengthInSpacings)
   EXPECT_NEAR (detailGammaFactor (a, 1.0 / (20.0 * h), SmoothingKind::TIKHONOV_CHOLMOD), 0.5, 1e-12);
   // Unit invariant: the same curvature in 1 / millimetres.
   EXPECT_NEAR (detailGammaFactor (b, 1.0 / (160.0 * h) / 1000.0, SmoothingKind::TIKHONOV), 4.0, 1e-4);
-  // Held within [1/8, 16]; 1 when not measured.
+  // Held within [1/8, 16]: 16 too for no bending (0: an unbounded detail length, as the
+  // limit of a bending that falls to 0); 1 when not measured (negative) or unusable.
   EXPECT_EQ (detailGammaFactor (a, 1e-9 / h, SmoothingKind::TIKHONOV), 16.0);
   EXPECT_EQ (detailGammaFactor (a, 1e3 / h, SmoothingKind::TOTAL_VARIATION), 0.125);
-  for (double bad : {0.0, -1.0, std::nan (""), std::numeric_limits<double>::infinity ()})
+  EXPECT_EQ (detailGammaFactor (a, 0.0, SmoothingKind::TIKHONOV), 16.0);
+  EXPECT_EQ (detailGammaFactor (a, 0.0, SmoothingKind::TOTAL_VARIATION), 16.0);
+  for (double bad : {-1.0, -1e-300, std::nan (""), std::numeric_limits<double>::infinity ()})
     EXPECT_EQ (detailGammaFactor (a, bad, SmoothingKind::TIKHONOV), 1.0) << bad;
   EXPECT_EQ (detailGammaFactor (PointGraph{}, 1.0, SmoothingKind::TIKHONOV), 1.0);
 }

@@ -203,8 +203,10 @@ defaultTotalVariationGamma (const PointGraph &graph, double noise)
 double
 detailGammaFactor (const PointGraph &graph, double curvature, SmoothingKind kind)
 {
-  if (!(curvature > 0.0) || !std::isfinite (curvature) || !(graph.spacing > 0.0))
-    return 1.0;
+  if (!(curvature >= 0.0) || !std::isfinite (curvature) || !(graph.spacing > 0.0))
+    return 1.0;  // not measured
+  if (curvature == 0.0)
+    return kDetailFactorMax;  // no bending above the noise: an unbounded detail length
   const double spacings = kind == SmoothingKind::TOTAL_VARIATION ? kTotalVariationDetailSpacings
                                                                  : kTikhonovDetailSpacings;
   const double factor = 1.0 / (curvature * graph.spacing * spacings);

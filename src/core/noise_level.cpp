@@ -83,14 +83,15 @@ median (std::vector<double> values)
  *  surface within `radius` of the point bends away from a plane, beyond the noise:
  *  sqrt(max(0, smallest principal variance of the ball - level^2)) / radius^2 (on a
  *  sphere of radius R, 1 / (4 sqrt(3) R): heights r^2 / 2R over a uniform disc); balls
- *  of fewer than kCurvatureMinimumBall points do not count. 0 when no ball counts. */
+ *  of fewer than kCurvatureMinimumBall points do not count. -1 when no ball counts (not
+ *  measured). */
 double
 meanBending (const detail::KdTree &tree, const Signal3 &points, double radius, double level,
              int num_threads)
 {
   const std::size_t n = static_cast<std::size_t> (points.rows ());
   if (!(radius > 0.0) || !std::isfinite (radius))
-    return 0.0;
+    return -1.0;
   const std::size_t stride = std::max<std::size_t> (1, n / kCurvatureSamples);
   const std::size_t samples = (n + stride - 1) / stride;
   std::vector<double> bending (samples, -1.0);
@@ -127,7 +128,7 @@ meanBending (const detail::KdTree &tree, const Signal3 &points, double radius, d
   for (double b : bending)
     if (b >= 0.0)
       sum += b, ++counted;
-  return counted > 0 ? sum / double (counted) : 0.0;
+  return counted > 0 ? sum / double (counted) : -1.0;
 }
 
 } // namespace

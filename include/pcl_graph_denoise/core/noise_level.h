@@ -33,9 +33,11 @@ struct NoiseEstimate
    *  On a sphere of radius r it reads about 1 / (4 sqrt(3) r); on a plane only the
    *  noise's own scatter; detail finer than the ball (a period under about 12 spacings)
    *  it reads by its amplitude only, as gentle bending. Its inverse is the detail length
-   *  behind core::detailGammaFactor. 0 when it was not measured. (A second, narrower
+   *  behind core::detailGammaFactor. 0 when no ball bends above the noise (v <= level^2
+   *  in every ball: a plane, or noise of several spacings that buries the bending);
+   *  -1 when it was not measured (no ball of 12 points or more). (A second, narrower
    *  ball for fine detail was tried: at 3 spacings the noise's scatter swamps it.) */
-  double curvature = 0.0;
+  double curvature = -1.0;
 };
 
 /** \brief Robust estimate of the noise level, and of the surface spacing it needs.

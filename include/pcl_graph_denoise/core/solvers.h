@@ -235,8 +235,9 @@ defaultTotalVariationGamma (const PointGraph &graph, double noise);
  *  smoothing than one with detail at a few spacings (the mechanical parts and statues
  *  of the evaluation at 10,000 points: 1/4 to 1), and the same surface takes more when
  *  sampled more densely. Measured as the best multiple of the rule per cloud on two sets
- *  of meshes (docs/evaluation.md, section 5). 1 when the curvature was not measured
- *  (<= 0) or the graph has no spacing. */
+ *  of meshes (docs/evaluation.md, section 5). 16 when the curvature is 0 (no bending
+ *  measured above the noise: a plane, or a surface whose bending the noise buries); 1 when
+ *  it was not measured (negative) or the graph has no spacing. */
 double
 detailGammaFactor (const PointGraph &graph, double curvature, SmoothingKind kind);
 
