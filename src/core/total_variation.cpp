@@ -431,6 +431,8 @@ struct TotalVariationSystem::Impl
   mutable Signal3 gty;
   mutable FloatSignal xbar_single;
   mutable Signal3 xbar_double;
+  /** Whether y holds the duals a finished solve left (TotalVariationStart::LAST_DUALS). */
+  mutable bool has_duals = false;
 
   bool
   identity () const { return edge_ptr.empty (); }
@@ -443,7 +445,7 @@ struct TotalVariationSystem::Impl
   }
 
   Signal3
-  solve (const Signal3 &f, SolverReport &out) const;
+  solve (const Signal3 &f, SolverReport &out, TotalVariationStart start) const;
 };
 
 TotalVariationSystem::TotalVariationSystem (const PointGraph &graph, double gamma,
@@ -566,7 +568,8 @@ TotalVariationSystem::TotalVariationSystem (TotalVariationSystem &&) noexcept = 
 TotalVariationSystem &TotalVariationSystem::operator= (TotalVariationSystem &&) noexcept = default;
 
 Signal3
-TotalVariationSystem::solve (const Signal3 &f, SolverReport *report) const
+TotalVariationSystem::solve (const Signal3 &f, SolverReport *report,
+                             TotalVariationStart start) const
 {
   if (!impl_)
     throw std::logic_error ("TotalVariationSystem::solve on a system moved from");
@@ -579,7 +582,7 @@ TotalVariationSystem::solve (const Signal3 &f, SolverReport *report) const
     out.converged = true;
     return f;
   }
-  return impl_->solve (f, out);
+  return impl_->solve (f, out, start);
 }
 
 Signal3
@@ -591,7 +594,8 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
 }
 
 Signal3
-TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
+TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out,
+                                   TotalVariationStart start) const
 {
   const std::size_t n = graph.numVertices ();
   const int threads = params.num_threads;
@@ -623,6 +627,10 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
   const auto originOf = [&] (std::size_t i) {
     return f.data () + 3 * std::size_t (roots ? roots[i] : 0);
   };
+  // From the duals the last solve left (feasible for any signal), where asked and there
+  // are some; else from the signal's own differences. Until this solve ends y holds none.
+  bool from_duals = start == TotalVariationStart::LAST_DUALS && has_duals;
+  has_duals = false;
   if (gty.rows () == 0)  // the first solve; both, or neither should one fail
   {
     Duals new_y = detail::matrixOnHugePages<Duals> (static_cast<Eigen::Index> (edge_col.size ()));
@@ -633,7 +641,8 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
     cross_terms.swap (new_cross);
   }
   // f's total variation comes with the warm start (the cold start's objective), summed
-  // over the same edges.
+  // over the same edges; the duals are the last solve's (from_duals), else each edge's on
+  // its ball's boundary along f's difference.
   const EdgeArrays edges = this->edges ();
   const auto warm_kernel = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
     double variation = 0.0;
@@ -647,7 +656,9 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
         float v[3];
         for (int c = 0; c < 3; ++c)
         {
-          if (params.norm == TotalVariationNorm::ISOTROPIC)
+          if (from_duals)
+            v[c] = y (static_cast<Eigen::Index> (e), c);
+          else if (params.norm == TotalVariationNorm::ISOTROPIC)
             v[c] = length > 0.0 ? static_cast<float> (gamma * d[c] / length) : 0.0f;
           else
             v[c] = d[c] > 0.0 ? bound_gamma : (d[c] < 0.0 ? -bound_gamma : 0.0f);
@@ -662,7 +673,7 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
     adjoint.finish ();
     return variation;
   };
-  // Sets the warm start; returns TV(f).
+  // Sets the warm start (x = f - grad^T y); returns TV(f).
   const auto warmStart = [&] () {
     const double variation =
         detail::parallelSum<double> (
@@ -895,15 +906,32 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
   }
   out.iterations = it;
   // Stopped short, and worse than it started (or not finite): the start is the best
-  // iterate known.
+  // iterate known. The last duals' start is gone with them: then the signal's own start
+  // (warm or cold by the same rule), where its objective is below the last iterate's.
   if (!out.converged && !(last_objective <= start_objective))
   {
-    if (warm)
+    if (from_duals)
+    {
+      Signal3 last = x;
+      from_duals = false;
+      const double variation = warmStart ();
+      double objective =
+          0.5 * (x - f).squaredNorm () + gamma * edgeVariation (edges, n, x, params.norm, threads);
+      if (!(objective <= kColdStart * gamma * variation))
+      {
+        x = f;
+        objective = gamma * variation;
+      }
+      if (!(objective < last_objective))
+        x = std::move (last);
+    }
+    else if (warm)
       warmStart ();
     else
       x = f;
   }
   detail::requireSaneResult (x, f, gamma, "total-variation");
+  has_duals = true;
   return x;
 }
 
