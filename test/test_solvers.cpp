@@ -1112,22 +1112,6 @@ TEST (TotalVariationSystem, StartsFromTheLastDualsWhereAsked)
     EXPECT_TRUE (system.solve (x1, &again_report) == from_signal);
     EXPECT_EQ (again_report.iterations, from_signal_report.iterations);
   }
-  // Stopped short and worse than the last duals' start (here the duals of f for the
-  // signal -f, whose differences point the other way): that start is gone with the
-  // duals, and the signal's own start is returned where it is better than the iterate.
-  const Problem small (3000, 0.01);
-  TotalVariationParams one;
-  one.max_iterations = 1;
-  one.tolerance = 1e-9;
-  TotalVariationParams none = one;
-  none.max_iterations = 0;
-  const TotalVariationSystem short_system (small.graph, 0.003, one);
-  short_system.solve (small.f);
-  const Signal3 flipped = -small.f;
-  SolverReport short_report;
-  const Signal3 x = short_system.solve (flipped, &short_report, TotalVariationStart::LAST_DUALS);
-  EXPECT_FALSE (short_report.converged);
-  EXPECT_TRUE (x == solveTotalVariation (small.graph, flipped, 0.003, none));
 }
 
 // The systems keep a reference to their graph: a temporary one does not compile.
