@@ -1066,54 +1066,6 @@ TEST (TotalVariationSystem, SolvesEverySignalAsAFreshSystemWould)
   }
 }
 
-TEST (TotalVariationSystem, StartsFromTheLastDualsWhereAsked)
-{
-  // TotalVariationStart::LAST_DUALS: twicing's second solve (on the first's result) from
-  // the duals the first left. It must land within the tolerance of the minimiser, in
-  // fewer iterations than from the signal's own start; with no finished solve on the
-  // system it is the signal's start, bit for bit; and a solve from the signal's start
-  // afterwards is unaffected.
-  const Problem p (20000, 0.01);
-  for (const TotalVariationNorm norm : {TotalVariationNorm::ISOTROPIC, TotalVariationNorm::ANISOTROPIC})
-  {
-    // (On this small cloud the gain shows at a tighter tolerance than the filters' 2e-2;
-    // at a million points and 2e-2 it is 40 -> 29 iterations.)
-    const double gamma = 0.03;
-    TotalVariationParams params;
-    params.norm = norm;
-    params.tolerance = 1e-3;
-    const TotalVariationSystem fresh (p.graph, gamma, params);
-    SolverReport unstarted_report, signal_report, duals_report, exact_report, again_report;
-    EXPECT_TRUE (fresh.solve (p.f, &unstarted_report, TotalVariationStart::LAST_DUALS) ==
-                 solveTotalVariation (p.graph, p.f, gamma, params, &signal_report));
-    EXPECT_EQ (unstarted_report.iterations, signal_report.iterations);
-
-    const TotalVariationSystem system (p.graph, gamma, params);
-    const Signal3 x1 = system.solve (p.f);
-    const Signal3 from_duals = system.solve (x1, &duals_report, TotalVariationStart::LAST_DUALS);
-    SolverReport from_signal_report;
-    const Signal3 from_signal = solveTotalVariation (p.graph, x1, gamma, params, &from_signal_report);
-    TotalVariationParams tight = params;
-    tight.tolerance = 1e-7;
-    tight.max_iterations = 20000;
-    const Signal3 exact = solveTotalVariation (p.graph, x1, gamma, tight, &exact_report);
-    const double best = totalVariationObjective (p.graph, x1, exact, gamma, norm);
-    const double objective = totalVariationObjective (p.graph, x1, from_duals, gamma, norm);
-    std::printf ("%s: second solve from the last duals %d iterations, from the signal %d; "
-                 "objective over the minimum's - 1: %.2e (signal's start %.2e)\n",
-                 norm == TotalVariationNorm::ISOTROPIC ? "isotropic" : "anisotropic",
-                 duals_report.iterations, from_signal_report.iterations, objective / best - 1.0,
-                 totalVariationObjective (p.graph, x1, from_signal, gamma, norm) / best - 1.0);
-    EXPECT_TRUE (duals_report.converged);
-    EXPECT_LT (duals_report.iterations, from_signal_report.iterations);
-    EXPECT_LE (objective, best * (1.0 + params.tolerance));
-    EXPECT_FALSE (from_duals == from_signal);
-    // The signal's start after it: as a fresh system's.
-    EXPECT_TRUE (system.solve (x1, &again_report) == from_signal);
-    EXPECT_EQ (again_report.iterations, from_signal_report.iterations);
-  }
-}
-
 // The systems keep a reference to their graph: a temporary one does not compile.
 static_assert (!std::is_constructible<TikhonovSystem, PointGraph &&, double>::value, "");
 static_assert (!std::is_constructible<TikhonovSystem, const PointGraph &&, double>::value, "");

@@ -400,8 +400,7 @@ protected:
   using Smoother = std::function<core::Signal3 (const core::Signal3 &f, core::SolverReport &report)>;
 
   /** \brief The denoiser of `graph` at strength gamma, set up once for every signal it is
-   *  given (the shrinkage correction solves twice on one graph and gamma; TV's solves
-   *  after the first start from the duals the one before left). The graph must
+   *  given (the shrinkage correction solves twice on one graph and gamma). The graph must
    *  outlive it; it and its copies are not for concurrent calls.
    *  \throws std::exception from the core (invalid parameters, a failed factorisation). */
   virtual Smoother

@@ -431,8 +431,6 @@ struct TotalVariationSystem::Impl
   mutable Signal3 gty;
   mutable FloatSignal xbar_single;
   mutable Signal3 xbar_double;
-  /** Whether y holds the duals a finished solve left (TotalVariationStart::LAST_DUALS). */
-  mutable bool has_duals = false;
 
   bool
   identity () const { return edge_ptr.empty (); }
@@ -445,7 +443,7 @@ struct TotalVariationSystem::Impl
   }
 
   Signal3
-  solve (const Signal3 &f, SolverReport &out, TotalVariationStart start) const;
+  solve (const Signal3 &f, SolverReport &out) const;
 };
 
 TotalVariationSystem::TotalVariationSystem (const PointGraph &graph, double gamma,
@@ -568,8 +566,7 @@ TotalVariationSystem::TotalVariationSystem (TotalVariationSystem &&) noexcept = 
 TotalVariationSystem &TotalVariationSystem::operator= (TotalVariationSystem &&) noexcept = default;
 
 Signal3
-TotalVariationSystem::solve (const Signal3 &f, SolverReport *report,
-                             TotalVariationStart start) const
+TotalVariationSystem::solve (const Signal3 &f, SolverReport *report) const
 {
   if (!impl_)
     throw std::logic_error ("TotalVariationSystem::solve on a system moved from");
@@ -582,7 +579,7 @@ TotalVariationSystem::solve (const Signal3 &f, SolverReport *report,
     out.converged = true;
     return f;
   }
-  return impl_->solve (f, out, start);
+  return impl_->solve (f, out);
 }
 
 Signal3
@@ -594,8 +591,7 @@ solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
 }
 
 Signal3
-TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out,
-                                   TotalVariationStart start) const
+TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out) const
 {
   const std::size_t n = graph.numVertices ();
   const int threads = params.num_threads;
@@ -627,10 +623,6 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out,
   const auto originOf = [&] (std::size_t i) {
     return f.data () + 3 * std::size_t (roots ? roots[i] : 0);
   };
-  // From the duals the last solve left (feasible for any signal), where asked and there
-  // are some; else from the signal's own differences. Until this solve ends y holds none.
-  bool from_duals = start == TotalVariationStart::LAST_DUALS && has_duals;
-  has_duals = false;
   if (gty.rows () == 0)  // the first solve; both, or neither should one fail
   {
     Duals new_y = detail::matrixOnHugePages<Duals> (static_cast<Eigen::Index> (edge_col.size ()));
@@ -641,8 +633,7 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out,
     cross_terms.swap (new_cross);
   }
   // f's total variation comes with the warm start (the cold start's objective), summed
-  // over the same edges; the duals are the last solve's (from_duals), else each edge's on
-  // its ball's boundary along f's difference.
+  // over the same edges.
   const EdgeArrays edges = this->edges ();
   const auto warm_kernel = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
     double variation = 0.0;
@@ -656,9 +647,7 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out,
         float v[3];
         for (int c = 0; c < 3; ++c)
         {
-          if (from_duals)
-            v[c] = y (static_cast<Eigen::Index> (e), c);
-          else if (params.norm == TotalVariationNorm::ISOTROPIC)
+          if (params.norm == TotalVariationNorm::ISOTROPIC)
             v[c] = length > 0.0 ? static_cast<float> (gamma * d[c] / length) : 0.0f;
           else
             v[c] = d[c] > 0.0 ? bound_gamma : (d[c] < 0.0 ? -bound_gamma : 0.0f);
@@ -673,7 +662,7 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out,
     adjoint.finish ();
     return variation;
   };
-  // Sets the warm start (x = f - grad^T y); returns TV(f).
+  // Sets the warm start; returns TV(f).
   const auto warmStart = [&] () {
     const double variation =
         detail::parallelSum<double> (
@@ -906,32 +895,15 @@ TotalVariationSystem::Impl::solve (const Signal3 &f, SolverReport &out,
   }
   out.iterations = it;
   // Stopped short, and worse than it started (or not finite): the start is the best
-  // iterate known. The last duals' start is gone with them: then the signal's own start
-  // (warm or cold by the same rule), where its objective is below the last iterate's.
+  // iterate known.
   if (!out.converged && !(last_objective <= start_objective))
   {
-    if (from_duals)
-    {
-      Signal3 last = x;
-      from_duals = false;
-      const double variation = warmStart ();
-      double objective =
-          0.5 * (x - f).squaredNorm () + gamma * edgeVariation (edges, n, x, params.norm, threads);
-      if (!(objective <= kColdStart * gamma * variation))
-      {
-        x = f;
-        objective = gamma * variation;
-      }
-      if (!(objective < last_objective))
-        x = std::move (last);
-    }
-    else if (warm)
+    if (warm)
       warmStart ();
     else
       x = f;
   }
   detail::requireSaneResult (x, f, gamma, "total-variation");
-  has_duals = true;
   return x;
 }
 

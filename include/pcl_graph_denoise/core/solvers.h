@@ -164,20 +164,6 @@ Signal3
 solveTotalVariation (const PointGraph &graph, const Signal3 &f, double gamma,
                      const TotalVariationParams &params = {}, SolverReport *report = nullptr);
 
-/** \brief Where a TotalVariationSystem's solve starts. */
-enum class TotalVariationStart
-{
-  /** Every edge's dual on the boundary of its ball along the signal's difference, as
-   *  solveTotalVariation starts (the default). */
-  SIGNAL,
-  /** The duals the system's last solve left (feasible for any signal), with x = f -
-   *  grad^T y; the signal's start when no solve has finished on the system. For a second
-   *  solve on a signal near the first (twicing's: the filters' shrinkage correction solves
-   *  again on the first result), where the first's duals are nearer the second's than the
-   *  signal's own start: on a noisy 1M-point sphere 40 -> 29 iterations. */
-  LAST_DUALS
-};
-
 /** \brief The total-variation problem of one graph and strength, set up once and solved for
  *  any number of signals (as TikhonovSystem): the undirected edges, each once, with their
  *  sqrt(w) (8 bytes per edge, half the stored entries), the vertices' steps and the graph's
@@ -208,15 +194,12 @@ public:
   TotalVariationSystem &
   operator= (TotalVariationSystem &&) noexcept;
 
-  /** \brief The minimiser of 1/2 |x - f|^2 + gamma TV(x) (as solveTotalVariation), from
-   *  `start` (the signal's by default: bit for bit solveTotalVariation's result; from the
-   *  last solve's duals the result depends on that solve, within the tolerance).
+  /** \brief The minimiser of 1/2 |x - f|^2 + gamma TV(x) (as solveTotalVariation).
    *  \throws std::invalid_argument when f has the wrong size or is not finite.
    *  \throws std::logic_error on a system moved from.
    *  \throws std::runtime_error as solveTotalVariation. */
   Signal3
-  solve (const Signal3 &f, SolverReport *report = nullptr,
-         TotalVariationStart start = TotalVariationStart::SIGNAL) const;
+  solve (const Signal3 &f, SolverReport *report = nullptr) const;
 
 private:
   struct Impl;
