@@ -172,7 +172,7 @@ printNoiseTable ()
   const std::size_t n = 160000;
   const double spacing = 2.0 / std::sqrt (double (n));  // the plane is 2 x 2
   std::printf ("{noise / spacing, median residual / spacing}\n");
-  for (double r : {0.1, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0})
+  for (double r : {0.1, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0, 12.0, 16.0})
   {
     double residual = 0.0, measured = 0.0, level = 0.0;
     for (std::uint64_t seed : {1, 2, 3})

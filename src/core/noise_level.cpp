@@ -25,6 +25,16 @@ namespace {
 constexpr int kNeighbours = 10;          // for the mean k-NN distance behind the ball
 constexpr std::size_t kSamples = 20000;  // a median needs no more
 constexpr double kBallRadius = 4.0;      // in mean k-NN distances
+/** The ball that counts the points for the spacing is widened (twice as wide, at most
+ *  kMaxWidenings times) while the noise level solved with it exceeds this fraction of its
+ *  radius: the count of a noisy plane's points in the ball, pi (R^2 - 1.45 level^2) per
+ *  unit area, holds while the ball reaches well past the noise, and on the noisy planes of
+ *  the table below it read the noise 18% high at 6 spacings of noise (the level then
+ *  0.56 R) and pinned it at the table's last row beyond; with the ball widened where the
+ *  level exceeds 0.45 R (noise above about 4.5 spacings) it reads within 5% up to 8
+ *  spacings and within 15% up to 16. */
+constexpr double kWidenAt = 0.45;
+constexpr int kMaxWidenings = 2;
 constexpr std::size_t kCurvatureSamples = 4000;  // a mean needs no more
 constexpr double kCurvatureRadius = 6.0;         // in mean k-NN distances
 constexpr std::size_t kCurvatureMinimumBall = 12;
@@ -36,7 +46,7 @@ struct Saturation
   double noise_over_spacing;
   double residual_over_spacing;
 };
-constexpr std::array<Saturation, 15> kSaturation = {{
+constexpr std::array<Saturation, 18> kSaturation = {{
     {0.0, 0.0},
     {0.1, 0.0989},
     {0.25, 0.2463},
@@ -52,6 +62,9 @@ constexpr std::array<Saturation, 15> kSaturation = {{
     {5.0, 2.3932},
     {6.0, 2.5473},
     {8.0, 2.7940},
+    {10.0, 2.9936},
+    {12.0, 3.1776},
+    {16.0, 3.4926},
 }};
 
 /** noise / spacing for a median residual / spacing, by the table (linear between its
@@ -183,52 +196,59 @@ estimateNoise (const PointGraph &graph, const Signal3 &points, int num_threads)
   // measured.
   const double low_noise_ratio = kSaturation[1].residual_over_spacing / kSaturation[1].noise_over_spacing;
   estimate.level = estimate.two_ring / low_noise_ratio;
-  const double radius = kBallRadius * knn_spacing;
-  if (!(radius > 0.0) || !std::isfinite (radius))
+  if (!(kBallRadius * knn_spacing > 0.0) || !std::isfinite (kBallRadius * knn_spacing))
     return estimate;
 
+  // The median count of points within `radius` of the samples, and the level solved with
+  // it: level = ratio (two_ring / spacing (level)) x spacing (level). The right side minus
+  // the left is positive at 0 and may cross zero more than once where the table is flat
+  // (the spacing shrinks as the level grows): the first crossing, found by a scan and then
+  // bisected, is the one continuous with low noise.
   std::vector<double> count (samples);
-  detail::parallelFor (samples, num_threads, [&] (std::size_t begin, std::size_t end) {
-    std::vector<VertexIndex> within;
-    std::vector<std::pair<VertexIndex, float>> scratch;
-    for (std::size_t sample = begin; sample < end; ++sample)
-    {
-      within.clear ();
-      tree.othersWithin (static_cast<VertexIndex> (sample * stride), static_cast<float> (radius),
-                         within, scratch);
-      count[sample] = double (within.size () + 1);
-    }
-  });
-  const double m = median (count);
-  // The level solves level = ratio (two_ring / spacing (level)) x spacing (level). The
-  // right side minus the left is positive at 0 and may cross zero more than once where
-  // the table is flat (the spacing shrinks as the level grows): the first crossing, found
-  // by a scan and then bisected, is the one continuous with low noise.
-  const auto spacingAt = [&] (double level) {
-    return std::sqrt (M_PI * std::max (radius * radius - 1.45 * level * level, 0.25 * radius * radius) / m);
+  double radius = kBallRadius * knn_spacing, m = 0.0, level = 0.0;
+  const auto spacingAt = [&] (double at) {
+    return std::sqrt (M_PI * std::max (radius * radius - 1.45 * at * at, 0.25 * radius * radius) / m);
   };
-  const auto excess = [&] (double level) {
-    const double s = spacingAt (level);
-    return noiseOverSpacing (estimate.two_ring / s) * s - level;
-  };
-  const double top = radius * std::sqrt (0.75 / 1.45);  // the area's floor
-  constexpr int kScan = 256;
-  double low = top, high = top;
-  for (int step = 1; step <= kScan; ++step)
+  for (int widening = 0;; ++widening)
   {
-    const double at = top * step / kScan;
-    if (excess (at) <= 0.0)
+    detail::parallelFor (samples, num_threads, [&] (std::size_t begin, std::size_t end) {
+      std::vector<VertexIndex> within;
+      std::vector<std::pair<VertexIndex, float>> scratch;
+      for (std::size_t sample = begin; sample < end; ++sample)
+      {
+        within.clear ();
+        tree.othersWithin (static_cast<VertexIndex> (sample * stride), static_cast<float> (radius),
+                           within, scratch);
+        count[sample] = double (within.size () + 1);
+      }
+    });
+    m = median (count);
+    const auto excess = [&] (double at) {
+      const double s = spacingAt (at);
+      return noiseOverSpacing (estimate.two_ring / s) * s - at;
+    };
+    const double top = radius * std::sqrt (0.75 / 1.45);  // the area's floor
+    constexpr int kScan = 256;
+    double low = top, high = top;
+    for (int step = 1; step <= kScan; ++step)
     {
-      low = top * (step - 1) / kScan, high = at;
+      const double at = top * step / kScan;
+      if (excess (at) <= 0.0)
+      {
+        low = top * (step - 1) / kScan, high = at;
+        break;
+      }
+    }
+    for (int step = 0; step < 60 && high - low > 1e-9 * high; ++step)
+    {
+      const double mid = 0.5 * (low + high);
+      (excess (mid) > 0.0 ? low : high) = mid;
+    }
+    level = 0.5 * (low + high);
+    if (level <= kWidenAt * radius || widening == kMaxWidenings)
       break;
-    }
+    radius *= 2.0;
   }
-  for (int step = 0; step < 60 && high - low > 1e-9 * high; ++step)
-  {
-    const double mid = 0.5 * (low + high);
-    (excess (mid) > 0.0 ? low : high) = mid;
-  }
-  const double level = 0.5 * (low + high);
   const double spacing = spacingAt (level);
   estimate.level = level;
   estimate.spacing = spacing;
