@@ -638,8 +638,33 @@ TEST (SmoothingQuality, NoiseOfSeveralSpacingsStillGetsTheFullDetailTerm)
     std::printf ("%s, sphere of 50,000 points at 8%% noise: detail factor %g, error %.6f (noisy %.6f)\n",
                  which == 0 ? "Tikhonov" : "TV", terms.detail, error, noisy);
     EXPECT_EQ (terms.detail, 16.0);
-    // Measured: Tikhonov 0.22, TV 0.15 of the noisy cloud's.
+    // Measured: Tikhonov 0.21, TV 0.15 of the noisy cloud's.
     EXPECT_LT (error, (which == 0 ? 0.3 : 0.2) * noisy);
+  }
+}
+
+TEST (SmoothingQuality, NoiseBeyondFourSpacingsScalesTheRules)
+{
+  // Beyond the calibrated range (noise up to about 2 spacings) TV's best strength grows
+  // with the noise over the spacing and Tikhonov's falls (core::highNoiseGammaFactor):
+  // a 50,000-point sphere at 8 spacings of noise (seen by the estimate as about 7.5).
+  const double spacing = std::sqrt (4.0 * M_PI / 50000.0);
+  auto sphere = std::make_shared<synthetic::Cloud> (synthetic::noisySphere (50000, 1.0, 8.0 * spacing, 21));
+  const double noisy = meanDistance (*sphere, kToSphere);
+  for (int which = 0; which < 2; ++which)
+  {
+    const std::unique_ptr<GraphSmoothing<pcl::PointXYZ>> filter = smoother (which != 0);
+    const double error = meanDistance (*run (*filter, sphere), kToSphere);
+    const double gamma = filter->getUsedGamma ();
+    const double ratio = filter->getEstimatedNoise () / spacing;
+    const double factor = which == 0 ? 4.0 / ratio : ratio / 4.0;
+    filter->setGamma (gamma / factor);
+    const double without = meanDistance (*run (*filter, sphere), kToSphere);
+    std::printf ("%s, sphere of 50,000 points at 8 spacings of noise (read %.2f): factor %.3g, "
+                 "error %.6f (without it %.6f, noisy %.6f)\n",
+                 which == 0 ? "Tikhonov" : "TV", ratio, factor, error, without, noisy);
+    EXPECT_GT (ratio, 6.5);
+    EXPECT_LT (error, 0.8 * without);
   }
 }
 

@@ -43,6 +43,10 @@ constexpr double kTotalVariationNoiseRatio = 0.5;
 constexpr double kTotalVariationNoiseExponent = 1.5;
 constexpr double kNoiseFactorMin = 0.5;
 constexpr double kNoiseFactorMax = 3.0;
+// Noise over the surface's spacing above which highNoiseGammaFactor scales the rules
+// (fitted to noisy spheres, cubes, the bunny and fandisk at 4-8 spacings of noise;
+// docs/evaluation.md, section 5).
+constexpr double kHighNoiseRatio = 4.0;
 
 double
 meanOf (const std::vector<double> &v)
@@ -229,6 +233,16 @@ refinedGammaFactor (const PointGraph &graph, double noise, double curvature, Smo
 {
   return std::clamp (detailGammaFactor (graph, curvature, kind) * noiseGammaFactor (graph, noise, kind),
                      kDetailFactorMin, kDetailFactorMax);
+}
+
+double
+highNoiseGammaFactor (double noise, double surface_spacing, SmoothingKind kind)
+{
+  if (!(noise > 0.0) || !std::isfinite (noise) || !(surface_spacing > 0.0) ||
+      !std::isfinite (surface_spacing))
+    return 1.0;
+  const double excess = std::max (1.0, noise / surface_spacing / kHighNoiseRatio);
+  return kind == SmoothingKind::TOTAL_VARIATION ? excess : 1.0 / excess;
 }
 
 } // namespace core

@@ -258,6 +258,18 @@ noiseGammaFactor (const PointGraph &graph, double noise, SmoothingKind kind);
 double
 refinedGammaFactor (const PointGraph &graph, double noise, double curvature, SmoothingKind kind);
 
+/** \brief The refined filters' factor for noise far beyond the range the rules were
+ *  calibrated on (noise up to about twice the spacing): with r = noise / surface_spacing
+ *  (NoiseEstimate::level over NoiseEstimate::spacing, the spacing of the surface itself,
+ *  not the k-NN distance, which grows with the noise), r / 4 for total variation and
+ *  4 / r for Tikhonov where r > 4, else 1 (also when either is not positive and finite).
+ *  Applied on top of refinedGammaFactor, beyond its bounds. On spheres, cubes, the bunny
+ *  and fandisk at 20,000 and 100,000 points with noise of 4 to 8 spacings, TV's best
+ *  multiple of its rule grows with r (x1.4-4 at 8 spacings) and Tikhonov's falls (x0.5
+ *  at 8); docs/evaluation.md, section 5. */
+double
+highNoiseGammaFactor (double noise, double surface_spacing, SmoothingKind kind);
+
 /** \brief A whole denoising pass at a strength gamma: the positions of the points of
  *  `graph` (one row per vertex) denoised, as the filters do (solve, refinements). */
 using Denoiser = std::function<Signal3 (const PointGraph &graph, const Signal3 &f, double gamma)>;

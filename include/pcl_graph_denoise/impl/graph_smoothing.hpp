@@ -289,7 +289,8 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
       if (quadric)
         used_gamma_ *= detail::kQuadricGammaScale *
                        (adaptive_support_ ? detail::kAdaptiveSupportGammaScale : 1.0) *
-                       core::refinedGammaFactor (graph, noise, estimate.curvature, smoothingKind ());
+                       core::refinedGammaFactor (graph, noise, estimate.curvature, smoothingKind ()) *
+                       core::highNoiseGammaFactor (noise, estimate.spacing, smoothingKind ());
       if (gamma_selection_ == GammaSelection::RISK_ESTIMATE)
       {
         core::RiskSelectionParams params;
