@@ -49,7 +49,8 @@ struct NoiseEstimate
  *  planes, k = 10: 0.98 of the noise at half a spacing, 0.96 at one, 0.81 at two, 0.65 at
  *  three). The spacing is measured from the median number m of points within R = 4 mean
  *  10-NN distances of a point, s = sqrt(pi (R^2 - 1.45 level^2) / m) (the count of a noisy
- *  plane's points in a ball), and the median residual is divided by the factor measured
+ *  plane's points in a ball; R is doubled, at most twice, while the level solved with it
+ *  exceeds 0.45 R, where noise of several spacings fills the ball), and the median residual is divided by the factor measured
  *  on noisy planes at that noise / spacing (a fixed table, bench/calibrate_gamma
  *  --noise-table; solved together with the spacing). At most 20,000 vertices are sampled,
  *  evenly along the graph's spatial order; `points` are in the graph's vertex order.
