@@ -17,7 +17,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #include <stdexcept>
@@ -208,7 +207,6 @@ public:
   explicit QuadricSystem (const Samples &s)
   {
     constexpr std::size_t L = Samples::kLanes;
-    double m[15][L] = {}, r[6][L] = {};
     const auto sum = [&] (std::size_t begin, std::size_t end) PCL_GRAPH_DENOISE_KERNEL {
       const double *__restrict sa = s.a.data (), *__restrict sb = s.b.data ();
       const double *__restrict sh = s.h.data (), *__restrict sw = s.w.data ();
@@ -242,14 +240,12 @@ public:
           lr[4][l] += wb * h;
           lr[5][l] += w * h;
         }
-      std::memcpy (m, lm, sizeof (m));
-      std::memcpy (r, lr, sizeof (r));
+      for (int i = 0; i < 15; ++i)
+        m_[i] = (lm[i][0] + lm[i][1]) + (lm[i][2] + lm[i][3]);
+      for (int i = 0; i < 6; ++i)
+        r_[i] = (lr[i][0] + lr[i][1]) + (lr[i][2] + lr[i][3]);
     };
     detail::wide (sum, 0, s.padded ());
-    for (int i = 0; i < 15; ++i)
-      m_[i] = (m[i][0] + m[i][1]) + (m[i][2] + m[i][3]);
-    for (int i = 0; i < 6; ++i)
-      r_[i] = (r[i][0] + r[i][1]) + (r[i][2] + r[i][3]);
   }
 
   /** The normal matrix over the basis (a^2, ab, b^2, a, b, 1). */
