@@ -91,6 +91,56 @@ median (std::vector<double> values)
   return values[mid];
 }
 
+/** The ball that counts a surface's points for its spacing: its radius and the median
+ *  count of points within it. */
+struct SpacingBall
+{
+  double radius;
+  double count;
+
+  /** The spacing the count gives with noise `level`: a noisy plane holds about
+   *  pi (R^2 - 1.45 level^2) / spacing^2 points in the ball (its area held at a quarter of
+   *  the ball's section at least). */
+  double
+  spacingAt (double level) const
+  {
+    return std::sqrt (M_PI * std::max (radius * radius - 1.45 * level * level, 0.25 * radius * radius) /
+                      count);
+  }
+};
+
+/** The noise level that solves level = ratio (two_ring / spacing (level)) x spacing (level)
+ *  with the ball's spacing. The right side minus the left is positive at 0 and may cross
+ *  zero more than once where the table is flat (the spacing shrinks as the level grows):
+ *  the first crossing, found by a scan and then bisected, is the one continuous with low
+ *  noise; the level where the ball's area reaches its floor when there is none below. */
+double
+solveLevel (double two_ring, const SpacingBall &ball)
+{
+  const auto excess = [&] (double at) {
+    const double s = ball.spacingAt (at);
+    return noiseOverSpacing (two_ring / s) * s - at;
+  };
+  const double top = ball.radius * std::sqrt (0.75 / 1.45);  // the area's floor
+  constexpr int kScan = 256;
+  double low = top, high = top;
+  for (int step = 1; step <= kScan; ++step)
+  {
+    const double at = top * step / kScan;
+    if (excess (at) <= 0.0)
+    {
+      low = top * (step - 1) / kScan, high = at;
+      break;
+    }
+  }
+  for (int step = 0; step < 60 && high - low > 1e-9 * high; ++step)
+  {
+    const double mid = 0.5 * (low + high);
+    (excess (mid) > 0.0 ? low : high) = mid;
+  }
+  return 0.5 * (low + high);
+}
+
 /** The mean over every (n / kCurvatureSamples)-th point, rounded down (every point when
  *  n < 2 kCurvatureSamples; else kCurvatureSamples to 1.5 times that), of how far the
  *  surface within `radius` of the point bends away from a plane, beyond the noise:
@@ -196,19 +246,15 @@ estimateNoise (const PointGraph &graph, const Signal3 &points, int num_threads)
   // measured.
   const double low_noise_ratio = kSaturation[1].residual_over_spacing / kSaturation[1].noise_over_spacing;
   estimate.level = estimate.two_ring / low_noise_ratio;
-  if (!(kBallRadius * knn_spacing > 0.0) || !std::isfinite (kBallRadius * knn_spacing))
+  const double first_radius = kBallRadius * knn_spacing;
+  if (!(first_radius > 0.0) || !std::isfinite (first_radius))
     return estimate;
 
-  // The median count of points within `radius` of the samples, and the level solved with
-  // it: level = ratio (two_ring / spacing (level)) x spacing (level). The right side minus
-  // the left is positive at 0 and may cross zero more than once where the table is flat
-  // (the spacing shrinks as the level grows): the first crossing, found by a scan and then
-  // bisected, is the one continuous with low noise.
+  // The level with the count of the ball of the first radius, then of a ball twice as wide
+  // while the level fills it (kWidenAt).
   std::vector<double> count (samples);
-  double radius = kBallRadius * knn_spacing, m = 0.0, level = 0.0;
-  const auto spacingAt = [&] (double at) {
-    return std::sqrt (M_PI * std::max (radius * radius - 1.45 * at * at, 0.25 * radius * radius) / m);
-  };
+  SpacingBall ball{first_radius, 0.0};
+  double level = 0.0;
   for (int widening = 0;; ++widening)
   {
     detail::parallelFor (samples, num_threads, [&] (std::size_t begin, std::size_t end) {
@@ -217,39 +263,18 @@ estimateNoise (const PointGraph &graph, const Signal3 &points, int num_threads)
       for (std::size_t sample = begin; sample < end; ++sample)
       {
         within.clear ();
-        tree.othersWithin (static_cast<VertexIndex> (sample * stride), static_cast<float> (radius),
-                           within, scratch);
+        tree.othersWithin (static_cast<VertexIndex> (sample * stride),
+                           static_cast<float> (ball.radius), within, scratch);
         count[sample] = double (within.size () + 1);
       }
     });
-    m = median (count);
-    const auto excess = [&] (double at) {
-      const double s = spacingAt (at);
-      return noiseOverSpacing (estimate.two_ring / s) * s - at;
-    };
-    const double top = radius * std::sqrt (0.75 / 1.45);  // the area's floor
-    constexpr int kScan = 256;
-    double low = top, high = top;
-    for (int step = 1; step <= kScan; ++step)
-    {
-      const double at = top * step / kScan;
-      if (excess (at) <= 0.0)
-      {
-        low = top * (step - 1) / kScan, high = at;
-        break;
-      }
-    }
-    for (int step = 0; step < 60 && high - low > 1e-9 * high; ++step)
-    {
-      const double mid = 0.5 * (low + high);
-      (excess (mid) > 0.0 ? low : high) = mid;
-    }
-    level = 0.5 * (low + high);
-    if (level <= kWidenAt * radius || widening == kMaxWidenings)
+    ball.count = median (count);
+    level = solveLevel (estimate.two_ring, ball);
+    if (level <= kWidenAt * ball.radius || widening == kMaxWidenings)
       break;
-    radius *= 2.0;
+    ball.radius *= 2.0;
   }
-  const double spacing = spacingAt (level);
+  const double spacing = ball.spacingAt (level);
   estimate.level = level;
   estimate.spacing = spacing;
   estimate.curvature =
