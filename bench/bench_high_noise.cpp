@@ -81,10 +81,7 @@ meshShape (const std::string &path, const std::string &name, Shape &shape,
   keep.push_back (mesh);
   keep.push_back (distance);
   shape.name = name;
-  for (const auto &f : mesh->faces)
-    shape.area += 0.5 * (mesh->vertices[f[1]] - mesh->vertices[f[0]])
-                            .cross (mesh->vertices[f[2]] - mesh->vertices[f[0]])
-                            .norm ();
+  shape.area = evaluation::surfaceArea (*mesh);
   shape.noisy = [mesh] (std::size_t n, double sigma, std::uint64_t seed) {
     return evaluation::addGaussianNoise (evaluation::sampleSurface (*mesh, n, seed), sigma, seed + 1);
   };

@@ -80,6 +80,15 @@ loadMesh (const std::string &path, TriangleMesh &mesh, std::string &error)
   return true;
 }
 
+double
+surfaceArea (const TriangleMesh &mesh)
+{
+  double total = 0.0;
+  for (const auto &face : mesh.faces)
+    total += area (mesh, face);
+  return total;
+}
+
 Cloud
 sampleSurface (const TriangleMesh &mesh, std::size_t n, std::uint64_t seed)
 {

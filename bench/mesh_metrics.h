@@ -35,6 +35,10 @@ struct TriangleMesh
 bool
 loadMesh (const std::string &path, TriangleMesh &mesh, std::string &error);
 
+/** The surface's area: the sum of its triangles'. */
+double
+surfaceArea (const TriangleMesh &mesh);
+
 /** n points uniform on the surface (triangles picked by area, then uniform barycentric
  *  coordinates), seeded. */
 Cloud
