@@ -18,7 +18,8 @@
  *   byte 2  sigma: kValues[b % 32]; bit 5: quadrics over two rings (no adaptive support),
  *           bit 6: the own quadric instead of the blended quadrics, bit 7: a quadric at
  *           every point (patch cover 0)
- *   byte 3  gamma (255: automatic), byte 4 radius: kValues[b % 32]
+ *   byte 3  gamma (255: automatic), byte 4 radius: kValues[b % 32]; bit 5: smoothing on the
+ *           Gaussian weights (no density normalisation)
  *   byte 5  threshold rule (b & 3: ratio, absolute, fraction, default) and its value
  *           kValues[b >> 3]
  *   byte 6  b & 15: maximum iterations (0 stays 0: invalid), (b >> 4) & 3: graph
@@ -259,6 +260,7 @@ checkSmoothing (GraphSmoothing<pcl::PointXYZ> &filter, const Cloud::Ptr &cloud,
   if (p[2] & 128)
     filter.setPatchCover (0);
   filter.setShrinkageCorrection (!(flags & 8));
+  filter.setDensityNormalization (!(p[4] & 32));
   filter.setNumberOfThreads (threads);
   filter.setInputCloud (cloud);
   if (indices)

@@ -418,7 +418,7 @@ lines (const std::string &text)
 const char *const every_option =
     "-outliers -tikhonov -tv -radius -sigma -threshold_ratio -degree_threshold -outlier_fraction "
     "-keep_sparse_surfaces -keep_organized -threads -k -gamma -graph_iterations -normal_displacement -local_surface "
-    "-adaptive_support -patch_cover -shrinkage_correction -tolerance -max_iterations -solver -norm -memory_limit -removed -ascii -q "
+    "-adaptive_support -patch_cover -shrinkage_correction -density_normalization -tolerance -max_iterations -solver -norm -memory_limit -removed -ascii -q "
     "-temporal -smoother -k2 -window -motion_compensation";
 
 }  // namespace
@@ -1477,6 +1477,28 @@ TEST (Cli, AdaptiveSupportReachesTheFilter)
   EXPECT_NE (y["1"], y["0"]);
   EXPECT_EQ (runTool (dir, {"in.pcd", "out.pcd", "-tikhonov", "-adaptive_support", "maybe"}).code, 2);
   const std::string help = helpOf (dir, "-adaptive_support 0|1");
+  EXPECT_NE (help.find ("(default: 1)"), std::string::npos) << help;
+}
+
+TEST (Cli, DensityNormalizationReachesTheFilter)
+{
+  // -density_normalization 0 gives the library's result with setDensityNormalization
+  // (false), 1 and no value its default (on); the two differ, for TV too, and the help
+  // tells the default.
+  const fs::path dir = testFolder ();
+  const auto off = [] (auto &filter, const std::string &value) {
+    if (value == "0")
+      filter.setDensityNormalization (false);
+  };
+  auto y = optionResults<pcl_graph_denoise::GraphTikhonovSmoothing<pcl::PointXYZ>> (
+      dir, "-tikhonov", "-density_normalization", {"", "0", "1"}, off);
+  EXPECT_EQ (y[""], y["1"]);
+  EXPECT_NE (y["1"], y["0"]);
+  auto z = optionResults<pcl_graph_denoise::GraphTVSmoothing<pcl::PointXYZ>> (
+      dir, "-tv", "-density_normalization", {"", "0"}, off);
+  EXPECT_NE (z[""], z["0"]);
+  EXPECT_EQ (runTool (dir, {"in.pcd", "out.pcd", "-tv", "-density_normalization", "2"}).code, 2);
+  const std::string help = helpOf (dir, "-density_normalization 0|1");
   EXPECT_NE (help.find ("(default: 1)"), std::string::npos) << help;
 }
 

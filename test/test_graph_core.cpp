@@ -1270,6 +1270,133 @@ TEST_F (Operators, ResultsDoNotDependOnThreadCount)
   EXPECT_EQ (weightedDegree (g, 1), weightedDegree (g, 4));
 }
 
+TEST_F (Operators, NormalizeDensityScalesEachSideOfAnEdgeByTheMeanDegreeOverItsOwn)
+{
+  const std::vector<double> degree = weightedDegree (g);
+  double mean = 0.0;
+  for (const double d : degree)
+    mean += d;
+  mean /= double (degree.size ());  // every vertex of this graph has links
+  PointGraph normalized = g;
+  normalizeDensity (normalized, 1.0, 1);
+  EXPECT_EQ (normalized.col, g.col);
+  EXPECT_EQ (normalized.row_ptr, g.row_ptr);
+  EXPECT_EQ (normalized.order, g.order);
+  std::vector<double> scale (degree.size ());
+  std::size_t differs = 0;
+  for (std::size_t i = 0; i < degree.size (); ++i)
+    scale[i] = std::clamp (mean / degree[i], 1.0 / kDensityNormalizationLimit, kDensityNormalizationLimit);
+  for (std::size_t i = 0; i < degree.size (); ++i)
+    for (auto e = g.row_ptr[i]; e < g.row_ptr[i + 1]; ++e)
+    {
+      const VertexIndex j = g.col[e];
+      ASSERT_EQ (normalized.weight[e], static_cast<float> (double (g.weight[e]) * (scale[i] * scale[j])));
+      // Still symmetric, bit for bit.
+      const auto back = std::lower_bound (g.col.begin () + g.row_ptr[j], g.col.begin () + g.row_ptr[j + 1],
+                                          static_cast<VertexIndex> (i));
+      ASSERT_EQ (normalized.weight[static_cast<std::size_t> (back - g.col.begin ())], normalized.weight[e]);
+      differs += normalized.weight[e] != g.weight[e];
+    }
+  EXPECT_GT (differs, g.numEntries () / 2);  // a random sampling's degrees vary
+  // The low-degree vertices gain the most: the degrees' spread narrows from below.
+  const std::vector<double> after = weightedDegree (normalized);
+  const auto lowest = std::min_element (degree.begin (), degree.end ()) - degree.begin ();
+  EXPECT_GT (after[static_cast<std::size_t> (lowest)], degree[static_cast<std::size_t> (lowest)]);
+  // The same on any number of threads.
+  PointGraph threaded = g;
+  normalizeDensity (threaded, 1.0, 3);
+  EXPECT_TRUE (threaded.weight == normalized.weight);
+  // A power below 1 takes that power of each side's factor; 0 leaves the weights.
+  PointGraph half = g;
+  normalizeDensity (half, 0.5);
+  for (std::size_t i = 0; i < degree.size (); ++i)
+    for (auto e = g.row_ptr[i]; e < g.row_ptr[i + 1]; ++e)
+      ASSERT_EQ (half.weight[e], static_cast<float> (double (g.weight[e]) * (std::pow (scale[i], 0.5) *
+                                                                            std::pow (scale[g.col[e]], 0.5))));
+  PointGraph none = g;
+  normalizeDensity (none, 0.0);
+  EXPECT_TRUE (none.weight == g.weight);
+  for (const double bad : {-0.1, 1.5, std::numeric_limits<double>::quiet_NaN ()})
+    EXPECT_THROW (normalizeDensity (none, bad), std::invalid_argument) << bad;
+}
+
+TEST (DensityNormalization, FadesOutUnderNoiseOfSeveralSpacings)
+{
+  EXPECT_EQ (densityNormalizationPower (0.01, 0.02), 1.0);
+  EXPECT_EQ (densityNormalizationPower (2.5, 1.0), 1.0);
+  EXPECT_NEAR (densityNormalizationPower (3.0, 1.0), 0.5, 1e-12);
+  EXPECT_NEAR (densityNormalizationPower (0.3, 0.1), 0.5, 1e-12);  // unit-free
+  EXPECT_EQ (densityNormalizationPower (3.5, 1.0), 0.0);
+  EXPECT_EQ (densityNormalizationPower (8.0, 1.0), 0.0);
+  // Not measured: full.
+  for (const double bad : {0.0, -1.0, std::numeric_limits<double>::infinity (),
+                           std::numeric_limits<double>::quiet_NaN ()})
+  {
+    EXPECT_EQ (densityNormalizationPower (bad, 1.0), 1.0) << bad;
+    EXPECT_EQ (densityNormalizationPower (1.0, bad), 1.0) << bad;
+  }
+}
+
+TEST (DensityNormalization, LeavesAnEvenGraphClampsAndKeepsZerosAndIsolatedVertices)
+{
+  // Vertices 0-3: every pair linked with weight 0.5 (one degree: left as it is); vertex 4
+  // linked to 0 only, by a weight of 1e-6 (its scale clamped to 16); vertex 5 isolated;
+  // vertex 6 linked to 0 by a weight of 0 (stays 0).
+  PointGraph graph;
+  std::vector<std::vector<std::pair<VertexIndex, float>>> rows (7);
+  for (VertexIndex i = 0; i < 4; ++i)
+    for (VertexIndex j = 0; j < 4; ++j)
+      if (i != j)
+        rows[i].push_back ({j, 0.5f});
+  const auto link = [&] (VertexIndex i, VertexIndex j, float w) {
+    rows[i].push_back ({j, w});
+    rows[j].push_back ({i, w});
+  };
+  PointGraph even;
+  const auto store = [] (const std::vector<std::vector<std::pair<VertexIndex, float>>> &r, PointGraph &out) {
+    out.row_ptr.assign (1, 0);
+    for (std::size_t i = 0; i < r.size (); ++i)
+    {
+      auto sorted = r[i];
+      std::sort (sorted.begin (), sorted.end ());
+      for (const auto &entry : sorted)
+      {
+        out.col.push_back (entry.first);
+        out.weight.push_back (entry.second);
+      }
+      out.row_ptr.push_back (out.col.size ());
+      out.order.push_back (static_cast<VertexIndex> (i));
+    }
+  };
+  store (std::vector<std::vector<std::pair<VertexIndex, float>>> (rows.begin (), rows.begin () + 4), even);
+  const std::vector<float> even_weights = even.weight;
+  normalizeDensity (even);
+  EXPECT_TRUE (even.weight == even_weights);
+
+  link (0, 4, 1e-6f);
+  link (0, 6, 0.0f);
+  store (rows, graph);
+  const std::vector<double> degree = weightedDegree (graph);
+  const double mean = (degree[0] + degree[1] + degree[2] + degree[3] + degree[4]) / 5.0;  // linked
+  normalizeDensity (graph);
+  const auto weightOf = [&] (VertexIndex i, VertexIndex j) {
+    for (auto e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
+      if (graph.col[e] == j)
+        return graph.weight[e];
+    return -1.0f;
+  };
+  EXPECT_EQ (weightOf (0, 4), static_cast<float> (double (1e-6f) * ((mean / degree[0]) * kDensityNormalizationLimit)));
+  EXPECT_EQ (weightOf (4, 0), weightOf (0, 4));
+  EXPECT_EQ (weightOf (1, 2), static_cast<float> (0.5 * ((mean / degree[1]) * (mean / degree[2]))));
+  EXPECT_EQ (weightOf (0, 6), 0.0f);
+  EXPECT_EQ (weightOf (6, 0), 0.0f);
+  EXPECT_EQ (graph.row_ptr[6], graph.row_ptr[5]);  // vertex 5: no entries
+
+  PointGraph empty;
+  normalizeDensity (empty);  // nothing to do, no failure
+  EXPECT_TRUE (empty.weight.empty ());
+}
+
 TEST_F (Operators, RejectSignalsOfTheWrongSize)
 {
   Signal3 y;

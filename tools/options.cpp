@@ -80,6 +80,7 @@ const ParameterSpec parameter_specs[] = {
     {"adaptive_support", SMOOTHING_STEPS, ValueType::SWITCH},
     {"patch_cover", SMOOTHING_STEPS, ValueType::COUNT},
     {"shrinkage_correction", SMOOTHING_STEPS, ValueType::SWITCH},
+    {"density_normalization", SMOOTHING_STEPS, ValueType::SWITCH},
     {"tolerance", SMOOTHING_STEPS, ValueType::POSITIVE},
     {"max_iterations", SMOOTHING_STEPS, ValueType::AT_LEAST_ONE},
     {"solver", TIKHONOV_STEP | TEMPORAL_STEP, ValueType::SOLVER},
@@ -556,6 +557,8 @@ usage (const std::string &program)
   const std::string twicing =
       both (tikhonov.getShrinkageCorrection (), tv.getShrinkageCorrection ());
   const std::string adaptive = both (tikhonov.getAdaptiveSupport (), tv.getAdaptiveSupport ());
+  const std::string density =
+      both (tikhonov.getDensityNormalization (), tv.getDensityNormalization ());
   const std::string cover = both (tikhonov.getPatchCover (), tv.getPatchCover ());
   const std::string tolerance = both (tikhonov.getTolerance (), tv.getTolerance ());
   GraphTikhonovSmoothing<pcl::PointXYZ> plain_tikhonov;  // the paper's: no quadrics
@@ -659,6 +662,10 @@ usage (const std::string &program)
     << "  -shrinkage_correction 0|1\n"
     << "                          twicing against the shrinkage of curved surfaces (default: "
     << twicing << ")\n"
+    << "  -density_normalization 0|1\n"
+    << "                          divide the sampling density out of the graph's weights, so\n"
+    << "                          that dense and sparse parts are smoothed alike; with normal\n"
+    << "                          displacement only (default: " << density << ")\n"
     << "  -tolerance X            solver stop: CG relative residual (-tikhonov), relative\n"
     << "                          primal-dual gap (-tv); > 0 (default: " << tolerance << ";\n"
     << "                          without quadrics, -normal_displacement 0 or -local_surface\n"

@@ -208,6 +208,8 @@ configure (pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &filter, const Step 
       filter.setPatchCover (static_cast<int> (v.number));
     else if (name == "shrinkage_correction")
       filter.setShrinkageCorrection (v.number != 0.0);
+    else if (name == "density_normalization")
+      filter.setDensityNormalization (v.number != 0.0);
     else if (name == "tolerance")
       filter.setTolerance (v.number);
     else if (name == "max_iterations")

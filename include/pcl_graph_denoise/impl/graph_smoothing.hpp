@@ -6,6 +6,7 @@
 
 #include <pcl_graph_denoise/core/noise_level.h>
 #include <pcl_graph_denoise/core/normals.h>
+#include <pcl_graph_denoise/core/operators.h>
 #include <pcl_graph_denoise/graph_smoothing.h>
 #include <pcl_graph_denoise/point_cloud_adaptor.h>
 
@@ -201,7 +202,7 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
   for (int pass = 0; pass < graph_iterations_; ++pass)
   {
     current_pass_ = pass;
-    const core::PointGraph graph = build_graph (position.template cast<float> ());
+    core::PointGraph graph = build_graph (position.template cast<float> ());
     if (progress_)
     {
       SmoothingProgress event;
@@ -232,8 +233,9 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
                  name.c_str (), count, components_.count, components_.largest,
                  components_.isolated);
     const bool quadric = fitsQuadrics ();
+    const bool normalizes = density_normalization_ && normal_displacement_;
     core::NoiseEstimate estimate;
-    if (automatic_gamma_ || quadric)
+    if (automatic_gamma_ || quadric || normalizes)
     {
       // Re-estimated on each pass: the noise left after the previous one.
       estimate = core::estimateNoise (graph, f, num_threads_);
@@ -291,17 +293,22 @@ GraphSmoothing<PointT>::runPasses (const core::Signal3 &start, const GraphBuilde
                        (adaptive_support_ ? detail::kAdaptiveSupportGammaScale : 1.0) *
                        core::refinedGammaFactor (graph, noise, estimate.curvature, smoothingKind ()) *
                        core::highNoiseGammaFactor (noise, estimate.spacing, smoothingKind ());
-      if (gamma_selection_ == GammaSelection::RISK_ESTIMATE)
-      {
-        core::RiskSelectionParams params;
-        params.num_threads = num_threads_;
-        used_gamma_ = core::selectGammaByRisk (
-            graph, f, noise, used_gamma_,
-            [&] (const core::PointGraph &g, const core::Signal3 &s, double gamma) {
-              return denoise (g, s, gamma, false);
-            },
-            params);
-      }
+    }
+    // The sampling density divided out of the weights: after the noise estimate and the
+    // rule, which read the Gaussian weights' degrees, and before every solve.
+    if (normalizes)
+      core::normalizeDensity (graph, core::densityNormalizationPower (noise, estimate.spacing),
+                              num_threads_);
+    if (automatic_gamma_ && gamma_selection_ == GammaSelection::RISK_ESTIMATE)
+    {
+      core::RiskSelectionParams params;
+      params.num_threads = num_threads_;
+      used_gamma_ = core::selectGammaByRisk (
+          graph, f, noise, used_gamma_,
+          [&] (const core::PointGraph &g, const core::Signal3 &s, double gamma) {
+            return denoise (g, s, gamma, false);
+          },
+          params);
     }
     report_ = core::SolverReport{};
     report_.converged = true;

@@ -72,11 +72,11 @@ parameterNames (StepKind kind)
       "residual_threshold", "keep_sparse_surfaces", "keep_organized", "threads", "memory_limit"};
   static const std::set<std::string> tikhonov = {
       "k", "sigma", "gamma", "graph_iterations", "normal_displacement", "local_surface",
-      "adaptive_support", "patch_cover", "shrinkage_correction", "tolerance", "max_iterations", "solver", "threads",
+      "adaptive_support", "patch_cover", "shrinkage_correction", "density_normalization", "tolerance", "max_iterations", "solver", "threads",
       "memory_limit"};
   static const std::set<std::string> tv = {
       "k", "sigma", "gamma", "graph_iterations", "normal_displacement", "local_surface",
-      "adaptive_support", "patch_cover", "shrinkage_correction", "tolerance", "max_iterations", "norm", "threads",
+      "adaptive_support", "patch_cover", "shrinkage_correction", "density_normalization", "tolerance", "max_iterations", "norm", "threads",
       "memory_limit"};
   switch (kind)
   {
@@ -257,6 +257,8 @@ configureSmoother (pcl_graph_denoise::GraphSmoothing<pcl::PointXYZ> &filter,
       filter.setPatchCover (integer (p, 0, "an integer >= 0 (0 = a quadric at every point)"));
     else if (name == "shrinkage_correction")
       filter.setShrinkageCorrection (boolean (p));
+    else if (name == "density_normalization")
+      filter.setDensityNormalization (boolean (p));
     else if (name == "tolerance")
       filter.setTolerance (positive (p));
     else if (name == "max_iterations")
