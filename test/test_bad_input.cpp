@@ -418,6 +418,46 @@ TEST (BadInput, PointsSpanningMoreThan1e18GiveAnError)
     expectSmoothed (run (kind, big), *big);
 }
 
+TEST (BadInput, AFarPointTheIndicesLeaveOutDoesNotStopTheFilters)
+{
+  // The usual way to drop garbage points in a PCL chain is to pass on indices without
+  // them. A far point (1e20) that is not named is not searched as a neighbour either: the
+  // named points are filtered as when it is NaN (never searched), with a warning.
+  auto far = sphere (200);
+  (*far)[0] = pcl::PointXYZ (1e20f, 0.0f, 0.0f);
+  (*far)[5] = pcl::PointXYZ (0.0f, -3e38f, 0.0f);
+  auto hole = deepCopy (*far);
+  hole[0] = hole[5] = pcl::PointXYZ (kNaN, kNaN, kNaN);
+  auto without = std::make_shared<Cloud> (hole);
+  auto named = std::make_shared<pcl::Indices> ();
+  for (int i = 1; i < 200; ++i)
+    if (i != 5)
+      named->push_back (i);
+  for (const Kind kind : kEveryFilter)
+  {
+    const Outcome o = run (kind, far, nullptr, nullptr, named);
+    const Outcome reference = run (kind, without, nullptr, nullptr, named);
+    EXPECT_NE (o.err.find ("2 points not named by the indices lie so far"), std::string::npos) << o.what ();
+    EXPECT_EQ (o.err.find ("the points span"), std::string::npos) << o.what ();
+    ASSERT_EQ (o.output.size (), reference.output.size ()) << o.what ();
+    if (kind == Kind::OUTLIERS)
+    {
+      EXPECT_EQ (o.kept, reference.kept);
+      EXPECT_EQ (o.removed, reference.removed);
+      EXPECT_GT (o.kept.size (), 150u);
+      continue;
+    }
+    for (int i = 1; i < 200; ++i)
+      if (i != 5)
+        ASSERT_TRUE (samePoint (o.output[i], reference.output[i])) << o.what () << ", point " << i;
+    EXPECT_TRUE (samePoint (o.output[0], (*far)[0]));  // not named: unchanged
+    EXPECT_TRUE (samePoint (o.output[5], (*far)[5]));
+  }
+  // Named, such a point still stops them (above); without indices too.
+  for (const Kind kind : kEveryFilter)
+    expectError (run (kind, far), "the points span");
+}
+
 TEST (BadInput, PointsSpanningLessThan1e15GiveAnError)
 {
   // Their neighbours' squared distances would be subnormal in single precision or 0

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -167,10 +168,15 @@ gatherFinitePoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &in
  *  the cloud its index list does not name, in cloud order and relative to the same
  *  origin, as rows searched as neighbours only: PCL's filters search the whole input
  *  cloud for the points their indices name. Nothing is appended when no point is named
- *  (nothing to filter) or when every finite point is. */
+ *  (nothing to filter) or when every finite point is. A point that is not named and lies
+ *  so far from the named ones that together they would span more than
+ *  core::kMaxPointExtent along an axis (garbage coordinates such as 1e20, which the graph
+ *  could not take) is not searched: the named points are filtered as if it were not
+ *  there, and with `class_name` a PCL_WARN in the class's name says how many were left. */
 template <typename PointT>
 void
-addSearchSurface (const pcl::PointCloud<PointT> &cloud, GatheredPoints &gathered)
+addSearchSurface (const pcl::PointCloud<PointT> &cloud, GatheredPoints &gathered,
+                  const char *class_name = nullptr)
 {
   const std::size_t named = gathered.cloud_index.size ();
   if (named == 0 || named + gathered.non_finite.size () == cloud.size ())
@@ -178,10 +184,36 @@ addSearchSurface (const pcl::PointCloud<PointT> &cloud, GatheredPoints &gathered
   std::vector<std::uint8_t> is_named (cloud.size (), 0);
   for (const auto index : gathered.cloud_index)
     is_named[index] = 1;
+  // The box the others may reach: the named points' box widened on each side by half of
+  // what the extent allows beyond it (relative to the origin, in double).
+  Eigen::Vector3d low = Eigen::Vector3d::Constant (std::numeric_limits<double>::infinity ());
+  Eigen::Vector3d high = -low;
+  for (std::size_t r = 0; r < named; ++r)
+  {
+    const Eigen::Vector3d q = gathered.xyz.row (static_cast<Eigen::Index> (r)).template cast<double> ();
+    low = low.cwiseMin (q);
+    high = high.cwiseMax (q);
+  }
+  const double margin = std::max (0.0, 0.5 * (core::kMaxPointExtent - (high - low).maxCoeff ()));
+  low.array () -= margin;
+  high.array () += margin;
   pcl::Indices others;
+  std::size_t too_far = 0;
   for (std::size_t i = 0; i < cloud.size (); ++i)
     if (!is_named[i] && isFinitePosition (cloud[i]))
-      others.push_back (static_cast<pcl::index_t> (i));
+    {
+      const PointT &p = cloud[i];
+      const Eigen::Vector3d q = Eigen::Vector3d (p.x, p.y, p.z) - gathered.origin;
+      if ((q.array () < low.array ()).any () || (q.array () > high.array ()).any ())
+        ++too_far;
+      else
+        others.push_back (static_cast<pcl::index_t> (i));
+    }
+  if (class_name && too_far > 0)
+    PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] %zu points not named by the indices lie "
+              "so far from the named ones that together they would span more than %g units "
+              "along an axis; they are not searched as neighbours.\n",
+              class_name, too_far, core::kMaxPointExtent);
   if (others.empty ())
     return;
   const auto rows = static_cast<Eigen::Index> (named + others.size ());

@@ -37,10 +37,6 @@ requireValid (bool ok, const std::string &what)
     throw std::invalid_argument (what);
 }
 
-/** Largest extent of the points along an axis: the neighbour search computes squared
- *  distances in single precision, which overflow (and lose every neighbour) beyond about
- *  1.8e19. */
-constexpr double kMaxExtent = 1e18;
 
 /** Smallest extent of points that do not all coincide along the longest axis: below it
  *  the squared distances between neighbours fall among single precision's subnormals
@@ -61,7 +57,7 @@ validatePoints (const PointMatrix &points)
                           .maxCoeff ();
   // Too wide and the squared distances overflow; too narrow (but not a single position)
   // and they underflow.
-  const bool wide = !(span <= kMaxExtent), narrow = span > 0.0 && span < kMinExtent;
+  const bool wide = !(span <= kMaxPointExtent), narrow = span > 0.0 && span < kMinExtent;
   if (wide || narrow)
   {
     char text[200];
@@ -69,7 +65,7 @@ validatePoints (const PointMatrix &points)
                    "the points span %s%g units along an axis, %s than %g: their squared "
                    "distances would %s single precision%s",
                    narrow ? "only " : "", span, wide ? "more" : "less",
-                   wide ? kMaxExtent : kMinExtent, wide ? "overflow" : "underflow",
+                   wide ? kMaxPointExtent : kMinExtent, wide ? "overflow" : "underflow",
                    narrow ? " (scale the cloud up)" : "");
     throw std::invalid_argument (text);
   }

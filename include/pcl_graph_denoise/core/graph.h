@@ -131,6 +131,11 @@ struct RadiusGraphParams
   int num_threads = 0;
 };
 
+/** \brief The widest extent of the points along an axis that the graphs take: the
+ *  neighbour search's single-precision squared distances overflow (and lose every
+ *  neighbour) beyond about 1.8e19. */
+constexpr double kMaxPointExtent = 1e18;
+
 /** \brief Build the symmetrised k-NN graph of the finite points in `points`.
  *  \throws std::invalid_argument on invalid parameters, non-finite points, more
  *  than 2^32 - 2 points, points spanning more than 1e18 units along an axis (the

@@ -106,7 +106,7 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
   }
 
   GatheredPoints gathered = gatherFinitePoints (*input_, *indices_, name.c_str ());
-  addSearchSurface (*input_, gathered);
+  addSearchSurface (*input_, gathered, name.c_str ());
 
   // Degree of every gathered row.
   const std::size_t count = gathered.cloud_index.size ();

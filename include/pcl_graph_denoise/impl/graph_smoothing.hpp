@@ -146,7 +146,7 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
   }
   if (!automatic_gamma_ && gamma_ == 0.0)
     return;  // the identity
-  addSearchSurface (*input_, gathered);
+  addSearchSurface (*input_, gathered, name.c_str ());
 
   // Coincident points are one vertex: k copies of a point would otherwise fill its k
   // neighbours and nothing could move. Every copy gets its position's result.
