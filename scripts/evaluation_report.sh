@@ -1510,7 +1510,12 @@ spheres of 20,000 and 50,000 points at 1–8% noise no worse than before at any 
 (Tikhonov at 20,000 points 0.00134 → 0.00128 at 1%, 0.00465 → 0.00414 at 6%; at 50,000 and
 6–8% unchanged); the 1,000,000-point sphere of `bench_smoothing` (σ = 1%, 2.7 spacings,
 power 0.76) Tikhonov 0.0004438 → 0.0003907 (45 iterations instead of 36; the filter 4.0–4.3
-s as before) and TV 0.0008599 → 0.0008289. The probe again, ours over the best peer
+s as before) and TV 0.0008599 → 0.0008289; `build/bench/bench_smoothing 1000000` after it:
+sphere Tikhonov 4.24 s and 0.00039, TV 5.31 s and 0.00083, the graph 0.746 s (5.68 × and
+7.11 × it; were 5.70 × and 7.45 ×); cube Tikhonov 4.02 s and 0.00087 (0.00091), TV 5.04 s and
+0.00099 (0.00105), the graph 0.722 s (5.58 × and 6.99 ×); MLS at its most accurate radius
+0.00086 and 0.00113 in 22.6 s and 17.5 s. `bench_memory 1000000`: Tikhonov 407.4 bytes per
+point, TV 482.6 (406.6 and 482.7 before). The probe again, ours over the best peer
 (Tikhonov; TV): the kitten with ray noise growing with depth 1.39 → 1.10 (1.62 → 1.54), the
 bunny 1.25 → 1.03 (1.36 → 1.32), with constant ray noise 1.02 → 0.91 and 0.92 → 0.84, with
 isotropic noise growing with depth 0.97 → 0.89 and 0.82 → 0.75; the grazing ground plane with
