@@ -27,7 +27,10 @@ namespace pcl_graph_denoise {
  * Defaults are derived from the data, so that the same cloud in millimetres or in
  * metres gives the same result (see the setters). Points with a non-finite
  * coordinate are always removed (also with setNegative(true)) and are never used
- * as queries or as neighbours. The full pcl::FilterIndices contract holds:
+ * as queries or as neighbours. A few points with garbage coordinates (more than 5e17 from
+ * the others' median along an axis, e.g. a "no return" marker at 1e20; fewer than half
+ * the points) are outliers beyond any search: removed (kept with setNegative(true)), with
+ * a PCL_WARN. The full pcl::FilterIndices contract holds:
  * indices, negative mode, removed indices, organised output, in-place use.
  *
  * Invalid parameters or indices are reported with PCL_ERROR when filter() runs,

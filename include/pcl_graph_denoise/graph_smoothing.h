@@ -68,8 +68,9 @@ class GraphSequenceSmoothing;
  * cloud's time; extract it first, e.g. with pcl::ExtractIndices, to smooth it on its
  * own). Coincident points (exact copies) are one vertex, and every copy moves as one.
  * Size, organisation and every other field
- * are kept, non-finite points pass through unchanged, a point with no neighbour does
- * not move and gamma = 0 is the identity. Invalid parameters or indices print a
+ * are kept, non-finite points pass through unchanged, as do a few points with garbage
+ * coordinates (more than 5e17 from the others' median along an axis; with a PCL_WARN), a
+ * point with no neighbour does not move and gamma = 0 is the identity. Invalid parameters or indices print a
  * PCL_ERROR naming the class and the parameter and leave an empty output; a solver
  * that stops before its tolerance prints a PCL_WARN with the residual reached and
  * keeps its best iterate. Nothing throws out of filter().

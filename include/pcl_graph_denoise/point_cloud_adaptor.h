@@ -47,6 +47,9 @@ struct GatheredPoints
    *  the cloud, searched as neighbours only. Rows [0, cloud_index.size ()) are the named
    *  points. */
   std::size_t surface_only = 0;
+  /** Indices (from the list, in its order) of named points taken out for lying too far
+   *  from the others (takeOutFarPoints); not in cloud_index. */
+  pcl::Indices far;
 };
 
 /** \brief Checks an index list against a cloud; returns an empty string when every
@@ -118,6 +121,28 @@ originOf (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &rows,
   return pulled ? median : mean;
 }
 
+/** \brief Sets the origin of `gathered` from the points of `cloud` its cloud_index names
+ *  (their mean, or median: originOf) and its xyz to them relative to it, one row each. */
+template <typename PointT>
+void
+centreGathered (const pcl::PointCloud<PointT> &cloud, GatheredPoints &gathered)
+{
+  const auto rows = static_cast<Eigen::Index> (gathered.cloud_index.size ());
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero ();
+  for (const auto index : gathered.cloud_index)
+    sum += Eigen::Vector3d (cloud[index].x, cloud[index].y, cloud[index].z);
+  gathered.origin = rows > 0 ? originOf (cloud, gathered.cloud_index, sum / double (rows))
+                             : Eigen::Vector3d::Zero ();
+  gathered.xyz.resize (rows, 3);
+  for (Eigen::Index r = 0; r < rows; ++r)
+  {
+    const PointT &p = cloud[gathered.cloud_index[r]];
+    gathered.xyz (r, 0) = static_cast<float> (double (p.x) - gathered.origin.x ());
+    gathered.xyz (r, 1) = static_cast<float> (double (p.y) - gathered.origin.y ());
+    gathered.xyz (r, 2) = static_cast<float> (double (p.z) - gathered.origin.z ());
+  }
+}
+
 /** \brief Gathers the finite points of `cloud` named by `indices` (which must be in
  *  range, see checkIndices). A repeated index is used once, at its first place; when
  *  `class_name` is given, that is reported with a PCL_WARN in the class's name. */
@@ -129,7 +154,6 @@ gatherFinitePoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &in
   GatheredPoints out;
   std::vector<std::uint8_t> seen (cloud.size (), 0);
   out.cloud_index.reserve (indices.size ());
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero ();
   for (const auto index : indices)
   {
     if (seen[index])
@@ -145,23 +169,59 @@ gatherFinitePoints (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &in
       continue;
     }
     out.cloud_index.push_back (index);
-    sum += Eigen::Vector3d (p.x, p.y, p.z);
   }
-  const auto rows = static_cast<Eigen::Index> (out.cloud_index.size ());
-  if (rows > 0)
-    out.origin = originOf (cloud, out.cloud_index, sum / double (rows));
-  out.xyz.resize (rows, 3);
-  for (Eigen::Index r = 0; r < rows; ++r)
-  {
-    const PointT &p = cloud[out.cloud_index[r]];
-    out.xyz (r, 0) = static_cast<float> (double (p.x) - out.origin.x ());
-    out.xyz (r, 1) = static_cast<float> (double (p.y) - out.origin.y ());
-    out.xyz (r, 2) = static_cast<float> (double (p.z) - out.origin.z ());
-  }
+  centreGathered (cloud, out);
   if (class_name && out.repeated > 0)
     PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] %zu repeated indices were used once.\n",
               class_name, out.repeated);
   return out;
+}
+
+/** \brief Takes out of `gathered` (from gatherFinitePoints on `cloud`) the named points
+ *  that lie farther than half of core::kMaxPointExtent from the named points' per-axis
+ *  median along an axis (garbage coordinates such as a "no return" marker at 1e20, which
+ *  no neighbour search can take with the rest), when they are fewer than half of the named
+ *  points (else the cloud is too wide as a whole, and the graph says so): they go to
+ *  gathered.far, and the rest is centred again as if they had not been named. With
+ *  `class_name`, a PCL_WARN in the class's name says how many and what `fate` they get. */
+template <typename PointT>
+void
+takeOutFarPoints (const pcl::PointCloud<PointT> &cloud, GatheredPoints &gathered,
+                  const char *class_name, const char *fate)
+{
+  const std::size_t named = gathered.cloud_index.size ();
+  if (named == 0)
+    return;
+  Eigen::Vector3d median;
+  std::vector<double> values (named);
+  const auto middle = values.begin () + std::ptrdiff_t (named / 2);
+  for (int d = 0; d < 3; ++d)
+  {
+    for (std::size_t r = 0; r < named; ++r)
+      values[r] = cloud[gathered.cloud_index[r]].getVector3fMap ()[d];
+    std::nth_element (values.begin (), middle, values.end ());
+    median[d] = *middle;
+  }
+  const double reach = 0.5 * core::kMaxPointExtent;
+  const auto isFar = [&] (pcl::index_t index) {
+    const PointT &p = cloud[index];
+    return ((Eigen::Vector3d (p.x, p.y, p.z) - median).cwiseAbs ().array () > reach).any ();
+  };
+  const auto count = static_cast<std::size_t> (
+      std::count_if (gathered.cloud_index.begin (), gathered.cloud_index.end (), isFar));
+  if (count == 0 || 2 * count >= named)
+    return;
+  pcl::Indices near;
+  near.reserve (named - count);
+  for (const auto index : gathered.cloud_index)
+    (isFar (index) ? gathered.far : near).push_back (index);
+  gathered.cloud_index.swap (near);
+  centreGathered (cloud, gathered);
+  if (class_name)
+    PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] %zu of the %zu points lie more than %g "
+              "units from the others' median along an axis, too far for any neighbour search "
+              "with them: %s.\n",
+              class_name, count, named, reach, fate);
 }
 
 /** \brief Appends to `gathered` (from gatherFinitePoints on `cloud`) the finite points of
@@ -179,10 +239,12 @@ addSearchSurface (const pcl::PointCloud<PointT> &cloud, GatheredPoints &gathered
                   const char *class_name = nullptr)
 {
   const std::size_t named = gathered.cloud_index.size ();
-  if (named == 0 || named + gathered.non_finite.size () == cloud.size ())
+  if (named == 0 || named + gathered.non_finite.size () + gathered.far.size () == cloud.size ())
     return;
   std::vector<std::uint8_t> is_named (cloud.size (), 0);
   for (const auto index : gathered.cloud_index)
+    is_named[index] = 1;
+  for (const auto index : gathered.far)
     is_named[index] = 1;
   // The box the others may reach: the named points' box widened on each side by half of
   // what the extent allows beyond it (relative to the origin, in double).

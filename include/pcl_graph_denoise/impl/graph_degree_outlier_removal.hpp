@@ -106,6 +106,9 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
   }
 
   GatheredPoints gathered = gatherFinitePoints (*input_, *indices_, name.c_str ());
+  // Garbage coordinates far beyond the rest (e.g. 1e20): outliers beyond doubt.
+  takeOutFarPoints (*input_, gathered, name.c_str (),
+                    "they are outliers (removed; kept with setNegative)");
   addSearchSurface (*input_, gathered, name.c_str ());
 
   // Degree of every gathered row.
@@ -200,6 +203,8 @@ GraphDegreeOutlierRemoval<PointT>::applyFilter (pcl::Indices &indices)
     state[gathered.cloud_index[r]] = (inlier[r] != 0) != negative_ ? 1 : 2;
   for (const auto index : gathered.non_finite)
     state[index] = 2;
+  for (const auto index : gathered.far)
+    state[index] = negative_ ? 1 : 2;
   // Into a list of their own: `indices` may be the caller's index list itself
   // (setIndices (list); filter (*list), which PCL's filters allow).
   pcl::Indices kept;

@@ -146,6 +146,7 @@ GraphSmoothing<PointT>::applyFilter (PointCloud &output)
   }
   if (!automatic_gamma_ && gamma_ == 0.0)
     return;  // the identity
+  takeOutFarPoints (*input_, gathered, name.c_str (), "they stay where they are");
   addSearchSurface (*input_, gathered, name.c_str ());
 
   // Coincident points are one vertex: k copies of a point would otherwise fill its k
