@@ -1253,6 +1253,23 @@ TEST (DefaultGamma, HighNoiseFactorScalesTheRulesBeyondFourSpacingsOfNoise)
   }
 }
 
+TEST (DefaultGamma, DensityNormalizationFadesOutUnderNoiseOfSeveralSpacings)
+{
+  EXPECT_EQ (densityNormalizationPower (0.01, 0.02), 1.0);
+  EXPECT_EQ (densityNormalizationPower (2.5, 1.0), 1.0);
+  EXPECT_NEAR (densityNormalizationPower (3.0, 1.0), 0.5, 1e-12);
+  EXPECT_NEAR (densityNormalizationPower (0.3, 0.1), 0.5, 1e-12);  // unit-free
+  EXPECT_EQ (densityNormalizationPower (3.5, 1.0), 0.0);
+  EXPECT_EQ (densityNormalizationPower (8.0, 1.0), 0.0);
+  // Not measured: full.
+  for (const double bad : {0.0, -1.0, std::numeric_limits<double>::infinity (),
+                           std::numeric_limits<double>::quiet_NaN ()})
+  {
+    EXPECT_EQ (densityNormalizationPower (bad, 1.0), 1.0) << bad;
+    EXPECT_EQ (densityNormalizationPower (1.0, bad), 1.0) << bad;
+  }
+}
+
 TEST (DefaultGamma, RefinedFactorIsTheProductOfTheTermsHeldWithinTheDetailBounds)
 {
   const PointMatrix m = toMatrix (synthetic::noisySphere (20000, 1.0, 0.01, 6));

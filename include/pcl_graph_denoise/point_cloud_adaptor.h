@@ -87,6 +87,24 @@ isFinitePosition (const PointT &p)
   return std::isfinite (p.x) && std::isfinite (p.y) && std::isfinite (p.z);
 }
 
+/** \brief The per-axis median of the points of `cloud` named by `rows` (not empty). */
+template <typename PointT>
+Eigen::Vector3d
+perAxisMedian (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &rows)
+{
+  std::vector<double> values (rows.size ());
+  const auto middle = values.begin () + std::ptrdiff_t (values.size () / 2);
+  Eigen::Vector3d median;
+  for (int d = 0; d < 3; ++d)
+  {
+    for (std::size_t r = 0; r < rows.size (); ++r)
+      values[r] = cloud[rows[r]].getVector3fMap ()[d];
+    std::nth_element (values.begin (), middle, values.end ());
+    median[d] = *middle;
+  }
+  return median;
+}
+
 /** \brief The origin of gathered points, from their mean `mean` (computed in their
  *  order): the mean, unless along an axis it lies farther from the median than ten times
  *  the median distance of the points from the median (a few far points pull it there,
@@ -100,22 +118,15 @@ originOf (const pcl::PointCloud<PointT> &cloud, const pcl::Indices &rows,
 {
   if (rows.empty ())
     return mean;
-  std::vector<double> values (rows.size ());
-  const auto middle = values.begin () + std::ptrdiff_t (values.size () / 2);
-  Eigen::Vector3d median;
+  const Eigen::Vector3d median = perAxisMedian (cloud, rows);
+  std::vector<double> distance (rows.size ());
+  const auto middle = distance.begin () + std::ptrdiff_t (distance.size () / 2);
   bool pulled = false;
   for (int d = 0; d < 3; ++d)
   {
     for (std::size_t r = 0; r < rows.size (); ++r)
-    {
-      const PointT &p = cloud[rows[r]];
-      values[r] = d == 0 ? p.x : (d == 1 ? p.y : p.z);
-    }
-    std::nth_element (values.begin (), middle, values.end ());
-    median[d] = *middle;
-    for (double &v : values)
-      v = std::abs (v - median[d]);
-    std::nth_element (values.begin (), middle, values.end ());
+      distance[r] = std::abs (cloud[rows[r]].getVector3fMap ()[d] - median[d]);
+    std::nth_element (distance.begin (), middle, distance.end ());
     pulled = pulled || std::abs (mean[d] - median[d]) > 10.0 * *middle;
   }
   return pulled ? median : mean;
@@ -190,32 +201,26 @@ takeOutFarPoints (const pcl::PointCloud<PointT> &cloud, GatheredPoints &gathered
                   const char *class_name, const char *fate)
 {
   const std::size_t named = gathered.cloud_index.size ();
-  if (named == 0)
+  // Points within the extent as a whole have none so far (one pass over the gathered
+  // rows; the medians only where it is exceeded).
+  if (named == 0 || !((gathered.xyz.colwise ().maxCoeff () - gathered.xyz.colwise ().minCoeff ())
+                          .template cast<double> ()
+                          .maxCoeff () > core::kMaxPointExtent))
     return;
-  Eigen::Vector3d median;
-  std::vector<double> values (named);
-  const auto middle = values.begin () + std::ptrdiff_t (named / 2);
-  for (int d = 0; d < 3; ++d)
-  {
-    for (std::size_t r = 0; r < named; ++r)
-      values[r] = cloud[gathered.cloud_index[r]].getVector3fMap ()[d];
-    std::nth_element (values.begin (), middle, values.end ());
-    median[d] = *middle;
-  }
+  const Eigen::Vector3d median = perAxisMedian (cloud, gathered.cloud_index);
   const double reach = 0.5 * core::kMaxPointExtent;
-  const auto isFar = [&] (pcl::index_t index) {
+  pcl::Indices near, far;
+  for (const auto index : gathered.cloud_index)
+  {
     const PointT &p = cloud[index];
-    return ((Eigen::Vector3d (p.x, p.y, p.z) - median).cwiseAbs ().array () > reach).any ();
-  };
-  const auto count = static_cast<std::size_t> (
-      std::count_if (gathered.cloud_index.begin (), gathered.cloud_index.end (), isFar));
+    const bool beyond = ((Eigen::Vector3d (p.x, p.y, p.z) - median).cwiseAbs ().array () > reach).any ();
+    (beyond ? far : near).push_back (index);
+  }
+  const std::size_t count = far.size ();
   if (count == 0 || 2 * count >= named)
     return;
-  pcl::Indices near;
-  near.reserve (named - count);
-  for (const auto index : gathered.cloud_index)
-    (isFar (index) ? gathered.far : near).push_back (index);
   gathered.cloud_index.swap (near);
+  gathered.far.swap (far);
   centreGathered (cloud, gathered);
   if (class_name)
     PCL_WARN ("[pcl_graph_denoise::%s::applyFilter] %zu of the %zu points lie more than %g "

@@ -47,6 +47,20 @@ constexpr double kNoiseFactorMax = 3.0;
 // (fitted to noisy spheres, cubes, the bunny and fandisk at 4-8 spacings of noise;
 // docs/evaluation.md, section 5).
 constexpr double kHighNoiseRatio = 4.0;
+// Noise over the surface's spacing up to which densityNormalizationPower is 1 (it falls to
+// 0 one spacing further; docs/evaluation.md, section 5).
+constexpr double kDensityNormalizationFullBelow = 2.5;
+
+/** noise / surface_spacing, the noise in surface spacings; 0 when either is not positive
+ *  and finite (not measured). */
+double
+surfaceNoiseRatio (double noise, double surface_spacing)
+{
+  if (!(noise > 0.0) || !std::isfinite (noise) || !(surface_spacing > 0.0) ||
+      !std::isfinite (surface_spacing))
+    return 0.0;
+  return noise / surface_spacing;
+}
 
 double
 meanOf (const std::vector<double> &v)
@@ -238,11 +252,15 @@ refinedGammaFactor (const PointGraph &graph, double noise, double curvature, Smo
 double
 highNoiseGammaFactor (double noise, double surface_spacing, SmoothingKind kind)
 {
-  if (!(noise > 0.0) || !std::isfinite (noise) || !(surface_spacing > 0.0) ||
-      !std::isfinite (surface_spacing))
-    return 1.0;
-  const double excess = std::max (1.0, noise / surface_spacing / kHighNoiseRatio);
+  const double excess = std::max (1.0, surfaceNoiseRatio (noise, surface_spacing) / kHighNoiseRatio);
   return kind == SmoothingKind::TOTAL_VARIATION ? excess : 1.0 / excess;
+}
+
+double
+densityNormalizationPower (double noise, double surface_spacing)
+{
+  return std::clamp (kDensityNormalizationFullBelow + 1.0 - surfaceNoiseRatio (noise, surface_spacing),
+                     0.0, 1.0);
 }
 
 } // namespace core

@@ -37,7 +37,6 @@ requireValid (bool ok, const std::string &what)
     throw std::invalid_argument (what);
 }
 
-
 /** Smallest extent of points that do not all coincide along the longest axis: below it
  *  the squared distances between neighbours fall among single precision's subnormals
  *  (below 1.2e-38) or to 0, and the derived scales with them. */

@@ -67,38 +67,27 @@ normalizeDensity (PointGraph &graph, double power, int num_threads)
   if (power == 0.0)
     return;
   const std::size_t n = graph.numVertices ();
-  const std::vector<double> degree = weightedDegree (graph, num_threads);
+  // Each vertex's degree, then in its place the vertex's scale.
+  std::vector<double> scale = weightedDegree (graph, num_threads);
   double sum = 0.0;  // in vertex order: the same mean for any number of threads
   std::size_t linked = 0;
-  for (const double d : degree)
+  for (const double d : scale)
     if (d > 0.0)
       sum += d, ++linked;
   if (linked == 0)
     return;
   const double mean = sum / double (linked);
-  std::vector<double> scale (n, 1.0);
-  for (std::size_t i = 0; i < n; ++i)
-    if (degree[i] > 0.0)
-      scale[i] = std::pow (std::clamp (mean / degree[i], 1.0 / kDensityNormalizationLimit,
-                                       kDensityNormalizationLimit),
-                           power);
+  for (double &s : scale)
+    s = s > 0.0 ? std::pow (std::clamp (mean / s, 1.0 / kDensityNormalizationLimit,
+                                        kDensityNormalizationLimit),
+                            power)
+                : 1.0;
   detail::parallelFor (n, num_threads, [&] (std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
       for (std::uint64_t e = graph.row_ptr[i]; e < graph.row_ptr[i + 1]; ++e)
         graph.weight[e] =
             static_cast<float> (double (graph.weight[e]) * (scale[i] * scale[graph.col[e]]));
   });
-}
-
-double
-densityNormalizationPower (double noise, double surface_spacing)
-{
-  // Full up to this many spacings of noise, none from one more on.
-  constexpr double kFullBelow = 2.5;
-  if (!(noise > 0.0) || !std::isfinite (noise) || !(surface_spacing > 0.0) ||
-      !std::isfinite (surface_spacing))
-    return 1.0;
-  return std::clamp (kFullBelow + 1.0 - noise / surface_spacing, 0.0, 1.0);
 }
 
 void

@@ -39,21 +39,12 @@ constexpr double kDensityNormalizationLimit = 16.0;
  *  degree was, which treats the sparse parts alike and, on an even sampling, pulls in the
  *  points that noise carried away from their neighbours. The weights stay symmetric (bit
  *  for bit), a weight of 0 stays 0 and a positive one positive; power 0, or a graph whose
- *  linked vertices all have one degree, leaves the weights as they are. The result does
+ *  linked vertices all have one degree, leaves the weights as they are (the filters take
+ *  the power from core::densityNormalizationPower). The result does
  *  not depend on the number of threads.
  *  \throws std::invalid_argument when power is not in [0, 1]. */
 void
 normalizeDensity (PointGraph &graph, double power = 1.0, int num_threads = 0);
-
-/** \brief The power of normalizeDensity for noise `noise` on a surface of point spacing
- *  `surface_spacing` (NoiseEstimate::level and NoiseEstimate::spacing): 1 up to 2.5
- *  spacings of noise, 0 from 3.5 on, linear between; 1 when either is not positive and
- *  finite. Under noise of several spacings the degrees measure the noise's scatter more
- *  than the sampling, and dividing them out moved the refined Tikhonov filter's rule onto
- *  the edge where a stronger gamma collapses the surface (a sphere of 50,000 points at 6%
- *  noise, 3.8 spacings: error 0.0053 -> 0.0121); docs/evaluation.md, section 5. */
-double
-densityNormalizationPower (double noise, double surface_spacing);
 
 /** \brief y = L x with L = D - W, for an N x 3 signal x (y is resized). */
 void
